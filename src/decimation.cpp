@@ -1,0 +1,256 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// DECIMATE (Dey et al. 2001, section 4) on the triangulation of VoronoiCocone.
+#include "cell_clipper.h"
+#include "delaunay.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <new>
+#include <queue>
+#include <tuple>
+
+namespace pcl {
+namespace cocone {
+
+using namespace detail;
+
+namespace {
+
+struct QueueEntry
+{
+  double ratio;
+  SampleIndex sample;
+  std::uint32_t version;
+  // std::priority_queue is a max-heap: "greater" puts the smallest ratio on top, ties
+  // broken by the smaller index, so the order (and the result) is deterministic.
+  bool
+  operator<(const QueueEntry& other) const
+  {
+    return std::tie(ratio, sample) > std::tie(other.ratio, other.sample);
+  }
+};
+
+/** Drops removed samples, the sample itself and repeats from a neighbour list. */
+void
+compact(std::vector<SampleIndex>& list, SampleIndex self, const std::vector<std::uint8_t>& alive)
+{
+  list.erase(std::remove_if(list.begin(), list.end(),
+                            [&](SampleIndex q) { return q == self || !alive[q]; }),
+             list.end());
+  std::sort(list.begin(), list.end());
+  list.erase(std::unique(list.begin(), list.end()), list.end());
+}
+
+} // namespace
+
+// How the diagram is kept up to date. CGAL's Delaunay_triangulation_3::remove costs
+// about 130 us per vertex on surface samples (it triangulates the hole in a fresh
+// auxiliary triangulation, with hash maps), 20 times the rest of a removal step. But
+// removing p only joins pairs of p's former Delaunay neighbours, so the new neighbours
+// of a sample q are among its old ones and p's: the Delaunay graph is updated in place
+// by merging neighbour lists (supersets are harmless), and the cocone radius of each
+// affected sample is recomputed from its own cell alone, by clipping with the bisectors
+// of its listed neighbours (CoconeCellClipper). Only cocone points closer than
+// rho * h_q matter (a larger radius means "keep"), which bounds the clipped cell and
+// the neighbour lists (see kListMargin).
+//
+// Removals are lazy in one more way: a sample whose cell changed keeps its old ratio as
+// its key (ratios only grow when neighbours go), and its radius is recomputed when that
+// key reaches the top of the queue. The smallest true ratio is therefore always removed
+// first, and a sample is recomputed once per time it is a candidate, not once per
+// neighbour removal.
+Status
+VoronoiCocone::decimate(double rho,
+                        DecimationLevels& levels,
+                        const std::function<bool(double)>& progress)
+{
+  Impl& d = *impl_;
+  levels = DecimationLevels();
+  if (d.status != Status::ok) {
+    d.message = "decimate() needs a successful compute() first";
+    return Status::not_computed;
+  }
+  if (d.vertex_of.empty()) {
+    d.message = "the triangulation was already consumed by an earlier decimate()";
+    return Status::not_computed;
+  }
+  if (!(rho > 0) || !std::isfinite(rho)) {
+    d.message = "the ratio bound must be a positive finite number";
+    return Status::invalid_parameter;
+  }
+
+  const std::size_t n = d.representative.size();
+  const double sin_theta = std::sin(cocone_angle_);
+  levels.level.assign(n, std::numeric_limits<double>::infinity());
+  levels.largest_ratio_bound = rho;
+
+  std::vector<std::uint8_t> alive(n, 0), tracked(n, 0), dirty(n, 0);
+  std::vector<std::uint32_t> version(n, 0);
+  std::vector<SampleIndex> candidates;
+  std::size_t alive_count = 0;
+  double smallest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (d.representative[i] != i) {
+      levels.level[i] = 0; // an exact duplicate never adds anything
+      continue;
+    }
+    alive[i] = 1;
+    ++alive_count;
+    const double r = d.ratio(static_cast<SampleIndex>(i));
+    if (r < rho) {
+      tracked[i] = 1;
+      candidates.push_back(static_cast<SampleIndex>(i));
+      smallest = std::min(smallest, r);
+    }
+  }
+
+  std::vector<std::vector<SampleIndex>> adjacency(n);
+  try {
+    runInArena(threads_, [&] {
+      // Delaunay neighbours of the candidates: only their lists are ever read.
+      tbb::enumerable_thread_specific<StarGatherer> gatherers;
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 256),
+                        [&](const tbb::blocked_range<std::size_t>& range) {
+                          StarGatherer& gatherer = gatherers.local();
+                          for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                            const SampleIndex s = candidates[k];
+                            const VertexHandle v = d.vertex_of[s];
+                            std::vector<SampleIndex>& list = adjacency[s];
+                            for (const CellHandle& c : gatherer.gather(v))
+                              for (int j = 0; j < 4; ++j) {
+                                const VertexHandle w = c->vertex(j);
+                                if (w != v && !d.dt.is_infinite(w))
+                                  list.push_back(w->info());
+                              }
+                            compact(list, s, alive);
+                          }
+                        });
+    });
+  }
+  catch (const std::bad_alloc&) {
+    d.message = "out of memory during decimation";
+    return Status::internal_error;
+  }
+
+  // The triangulation changes from here on: nothing derived from it applies any more.
+  d.dt.clear();
+  d.vertex_of.clear();
+  d.vertex_of.shrink_to_fit();
+  d.triangles.clear();
+  d.triangles.shrink_to_fit();
+  d.triangle_offsets.clear();
+  d.triangle_ids.clear();
+
+  std::priority_queue<QueueEntry> queue;
+  for (const SampleIndex s : candidates)
+    queue.push({d.ratio(s), s, 0});
+
+  CoconeCellClipper clipper;
+  std::vector<Eigen::Vector3d> offsets;
+  std::vector<int> kept;
+  // After each measurement a list keeps the samples bounding the cell in a box twice
+  // the size the radius needs, so that merged lists still cover a neighbour's grown
+  // cell; a list that grows past kListLimit anyway is cut to the exact Delaunay
+  // neighbours (whole cell). Measured on a 20k torus: 834 samples kept against 835 for
+  // exact lists, in a tenth of the time.
+  constexpr double kListMargin = 2;
+  constexpr std::size_t kListLimit = 128;
+  // "Infinity" for unbounded cells: far beyond the data.
+  double extent = 0;
+  for (const Eigen::Vector3d& p : d.centered)
+    extent = std::max(extent, p.cwiseAbs().maxCoeff());
+  extent = 1e3 * std::max(extent, 1e-300);
+  double running_max = 0;
+  std::size_t removals = 0;
+  try {
+    while (!queue.empty()) {
+      const QueueEntry top = queue.top();
+      queue.pop();
+      const SampleIndex s = top.sample;
+      if (top.version != version[s] || !alive[s] || !tracked[s])
+        continue; // stale entry
+      if (top.ratio >= rho)
+        break;
+      if (alive_count <= 4)
+        break;
+
+      if (dirty[s]) {
+        // Its cell grew since the key was computed: measure again, queue again.
+        std::vector<SampleIndex>& list = adjacency[s];
+        compact(list, s, alive);
+        offsets.clear();
+        for (const SampleIndex q : list)
+          offsets.push_back(d.centered[q] - d.centered[s]);
+        const double limit = rho * d.height[s];
+        CoconeCellClipper::Result measured;
+        if (list.size() > kListLimit) // rare: prune to the exact Delaunay neighbours
+          measured = clipper.fullCell(d.pole_vector[s], sin_theta, extent, offsets, kept);
+        else
+          measured = clipper.coconeRadius(d.pole_vector[s], sin_theta, limit, kListMargin,
+                                          offsets, &kept);
+        std::sort(kept.begin(), kept.end());
+        for (std::size_t k = 0; k < kept.size(); ++k)
+          list[k] = list[kept[k]];
+        list.resize(kept.size());
+        dirty[s] = 0;
+        ++version[s];
+        const double ratio = measured.reached_limit || measured.radius >= limit
+                                 ? std::numeric_limits<double>::infinity()
+                                 : measured.radius / d.height[s];
+        if (ratio < rho) {
+          queue.push({ratio, s, version[s]});
+        }
+        else {
+          tracked[s] = 0; // ratios only grow: it stays from now on
+          adjacency[s].clear();
+          adjacency[s].shrink_to_fit();
+        }
+        continue;
+      }
+
+      // A removal only enlarges the neighbours' cells, so ratios rarely decrease; the
+      // running maximum makes "kept at rho" exactly the result of a run stopped at rho.
+      running_max = std::max(running_max, top.ratio);
+      levels.level[s] = running_max;
+      alive[s] = 0;
+      --alive_count;
+      tracked[s] = 0;
+      ++removals;
+      std::vector<SampleIndex> removed_list = std::move(adjacency[s]);
+      adjacency[s] = std::vector<SampleIndex>();
+      for (const SampleIndex q : removed_list) {
+        if (!alive[q] || !tracked[q])
+          continue;
+        std::vector<SampleIndex>& list = adjacency[q];
+        list.insert(list.end(), removed_list.begin(), removed_list.end());
+        if (list.size() > 1024)
+          compact(list, q, alive);
+        dirty[q] = 1;
+      }
+
+      if (progress && (removals & 1023u) == 0 && std::isfinite(smallest) && rho > smallest) {
+        if (!progress(std::min(1.0, (running_max - smallest) / (rho - smallest)))) {
+          d.message = "cancelled";
+          levels.removals = removals;
+          return Status::internal_error;
+        }
+      }
+    }
+  }
+  catch (const std::bad_alloc&) {
+    d.message = "out of memory during decimation";
+    return Status::internal_error;
+  }
+  levels.removals = removals;
+  if (progress)
+    progress(1.0);
+  d.message.clear();
+  return Status::ok;
+}
+
+} // namespace cocone
+} // namespace pcl

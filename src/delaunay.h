@@ -1,0 +1,303 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Private: the CGAL types behind VoronoiCocone and the per-sample Voronoi geometry
+// shared by the first computation and by decimation. Never installed.
+#pragma once
+
+#include <pcl/cocone/voronoi_cocone.h>
+
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_cell_base_with_info_3.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include <tbb/task_arena.h>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace pcl {
+namespace cocone {
+namespace detail {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_3<SampleIndex, Kernel>;
+
+constexpr std::uint32_t kNoCellIndex = std::numeric_limits<std::uint32_t>::max();
+
+/** A Delaunay cell that stores its circumcenter (the Voronoi vertex) inline and an index
+ * for per-cell arrays. Cells created later (by vertex removal) start with an unknown
+ * center and kNoCellIndex; changing a vertex forgets the center, as CGAL's own
+ * Delaunay_triangulation_cell_base_with_circumcenter_3 does (which allocates each
+ * center on the heap instead). */
+template <typename GT, typename Cb = CGAL::Delaunay_triangulation_cell_base_3<GT>>
+class VoronoiCellBase : public Cb
+{
+public:
+  using Vertex_handle = typename Cb::Vertex_handle;
+  using Cell_handle = typename Cb::Cell_handle;
+
+  template <typename TDS2>
+  struct Rebind_TDS
+  {
+    using Cb2 = typename Cb::template Rebind_TDS<TDS2>::Other;
+    using Other = VoronoiCellBase<GT, Cb2>;
+  };
+
+  VoronoiCellBase() : Cb() {}
+  VoronoiCellBase(Vertex_handle v0, Vertex_handle v1, Vertex_handle v2, Vertex_handle v3)
+  : Cb(v0, v1, v2, v3)
+  {}
+  VoronoiCellBase(Vertex_handle v0,
+                  Vertex_handle v1,
+                  Vertex_handle v2,
+                  Vertex_handle v3,
+                  Cell_handle n0,
+                  Cell_handle n1,
+                  Cell_handle n2,
+                  Cell_handle n3)
+  : Cb(v0, v1, v2, v3, n0, n1, n2, n3)
+  {}
+
+  void
+  set_vertex(int i, Vertex_handle v)
+  {
+    forgetCenter();
+    Cb::set_vertex(i, v);
+  }
+  void
+  set_vertices()
+  {
+    forgetCenter();
+    Cb::set_vertices();
+  }
+  void
+  set_vertices(Vertex_handle v0, Vertex_handle v1, Vertex_handle v2, Vertex_handle v3)
+  {
+    forgetCenter();
+    Cb::set_vertices(v0, v1, v2, v3);
+  }
+
+  /** Index into per-cell arrays; kNoCellIndex when the cell has none. */
+  std::uint32_t&
+  cellIndex()
+  {
+    return index_;
+  }
+  std::uint32_t
+  cellIndex() const
+  {
+    return index_;
+  }
+
+  /** The circumcenter, computed on first use. Not thread-safe on first use: fill every
+   * center with storeCenter() before reading concurrently. */
+  const Eigen::Vector3d&
+  center() const
+  {
+    if (std::isnan(center_.x()))
+      storeCenter();
+    return center_;
+  }
+  void
+  storeCenter() const
+  {
+    const auto& p0 = this->vertex(0)->point();
+    const auto& p1 = this->vertex(1)->point();
+    const auto& p2 = this->vertex(2)->point();
+    const auto& p3 = this->vertex(3)->point();
+    const auto c = CGAL::circumcenter(p0, p1, p2, p3);
+    center_ = Eigen::Vector3d(c.x(), c.y(), c.z());
+  }
+
+private:
+  void
+  forgetCenter()
+  {
+    center_.x() = std::numeric_limits<double>::quiet_NaN();
+  }
+  mutable Eigen::Vector3d center_{std::numeric_limits<double>::quiet_NaN(), 0, 0};
+  std::uint32_t index_ = kNoCellIndex;
+};
+
+using CellBase = VoronoiCellBase<Kernel>;
+using Tds = CGAL::Triangulation_data_structure_3<VertexBase, CellBase>;
+using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, Tds>;
+using VertexHandle = Delaunay::Vertex_handle;
+using CellHandle = Delaunay::Cell_handle;
+
+
+inline Eigen::Vector3d
+toEigen(const Point& p)
+{
+  return {p.x(), p.y(), p.z()};
+}
+
+/** The cells incident to a vertex, gathered with a small open-addressing set instead of
+ * CGAL's incident_cells (which marks cells in place and so cannot run concurrently).
+ * One instance per thread; after the first vertices it no longer allocates. */
+class StarGatherer
+{
+public:
+  const std::vector<CellHandle>&
+  gather(VertexHandle v);
+
+private:
+  bool
+  insert(const void* key);
+  std::vector<CellHandle> cells_;
+  std::vector<const void*> keys_;
+  std::vector<std::uint32_t> stamps_;
+  std::uint32_t stamp_ = 0;
+};
+
+/** Classification of a point relative to the double cone of a cocone. */
+enum class ConeSide
+{
+  upper,  // cos(angle(x, v)) > sin(theta)
+  inside, // |cos| <= sin(theta): in the cocone
+  lower   // cos < -sin(theta)
+};
+
+/** How a Voronoi edge (segment or ray, relative to the sample) meets a cocone. */
+struct EdgeInCocone
+{
+  bool meets = false;      // some point of the edge lies in the cocone
+  bool unbounded = false;  // the ray's direction lies in the cocone: r_p is infinite
+  double max_distance2 = 0; // largest squared distance from p of a point inside
+};
+
+/** Clips the Voronoi edge start + t * direction (t in [0, 1] for a segment, t >= 0 for a
+ * ray), given relative to the sample, against the cocone of axis \a axis (unit) and
+ * angle theta (sin_theta = sin(theta)). */
+EdgeInCocone
+clipVoronoiEdge(const Eigen::Vector3d& start,
+                const Eigen::Vector3d& direction,
+                bool is_ray,
+                const Eigen::Vector3d& axis,
+                double sin_theta);
+
+/** What one pass over a vertex's Voronoi cell produces. */
+struct CellGeometry
+{
+  Eigen::Vector3d pole_vector = Eigen::Vector3d::Zero();
+  Eigen::Vector3d positive_pole = Eigen::Vector3d::Zero(); // centered frame
+  Eigen::Vector3d negative_pole = Eigen::Vector3d::Zero(); // centered frame
+  bool unbounded = false;
+  bool has_negative_pole = false;
+  double height = 0;
+  double radius = 0;
+};
+
+/** Computes the poles, pole vector and height of the cell of \a v from its star. */
+void
+computePoles(const Delaunay& dt,
+             VertexHandle v,
+             const std::vector<CellHandle>& star,
+             CellGeometry& geometry);
+
+/** Unit outward normal of the convex-hull facet (c, i): c is finite and its neighbour
+ * across facet i is infinite. */
+Eigen::Vector3d
+hullFacetNormal(CellHandle c, int i);
+
+/** Computes the cocone radius of \a v for the unit axis \a axis. Every Voronoi edge of
+ * V_v is the dual of a Delaunay facet (c, i) of the star; each is visited once (from its
+ * finite cell, or from the cell at the lower address). For each edge that meets the
+ * cocone, calls on_marked(c, i) so that the caller can record the mark. */
+template <typename OnMarked>
+double
+computeCoconeRadius(const Delaunay& dt,
+                    VertexHandle v,
+                    const std::vector<CellHandle>& star,
+                    const Eigen::Vector3d& axis,
+                    double sin_theta,
+                    OnMarked&& on_marked)
+{
+  const Eigen::Vector3d p = toEigen(v->point());
+  double radius2 = 0;
+  for (const CellHandle& c : star) {
+    if (dt.is_infinite(c))
+      continue; // its finite facet at v is visited from the finite side
+    for (int i = 0; i < 4; ++i) {
+      if (c->vertex(i) == v)
+        continue; // the facet opposite v does not contain v
+      const CellHandle n = c->neighbor(i);
+      const bool ray = dt.is_infinite(n);
+      if (!ray && std::less<const void*>()(&*n, &*c))
+        continue; // visited from n
+      const Eigen::Vector3d start = c->center() - p;
+      const Eigen::Vector3d direction =
+          ray ? hullFacetNormal(c, i) : Eigen::Vector3d(n->center() - p - start);
+      const EdgeInCocone clip = clipVoronoiEdge(start, direction, ray, axis, sin_theta);
+      if (!clip.meets)
+        continue;
+      on_marked(c, i);
+      if (clip.unbounded)
+        radius2 = std::numeric_limits<double>::infinity();
+      else if (clip.max_distance2 > radius2)
+        radius2 = clip.max_distance2;
+    }
+  }
+  return std::sqrt(radius2);
+}
+
+/** Runs \a function with at most \a threads workers (0: TBB's default). */
+template <typename Function>
+void
+runInArena(unsigned threads, Function&& function)
+{
+  if (threads == 0) {
+    function();
+    return;
+  }
+  tbb::task_arena arena(static_cast<int>(threads));
+  arena.execute(function);
+}
+
+} // namespace detail
+
+/** The state behind VoronoiCocone; shared with decimation.cpp. Per-sample arrays are
+ * indexed by input index and filled for representatives only. */
+struct VoronoiCocone::Impl
+{
+  detail::Delaunay dt;
+  Status status = Status::not_computed;
+  std::string message;
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> centered;
+  std::vector<SampleIndex> representative;
+  std::vector<detail::VertexHandle> vertex_of; // null for duplicates
+  std::size_t unique_count = 0;
+
+  std::vector<Eigen::Vector3d> pole_vector;
+  std::vector<Eigen::Vector3d> positive_pole; // centered frame
+  std::vector<Eigen::Vector3d> negative_pole; // centered frame
+  std::vector<double> height;                 // NaN: no negative pole
+  std::vector<double> radius;                 // +inf: unbounded cocone
+  std::vector<std::uint8_t> unbounded;
+
+  std::vector<MarkedTriangle> triangles;
+  std::vector<std::uint32_t> triangle_offsets; // CSR by sample, size n + 1
+  std::vector<std::uint32_t> triangle_ids;
+
+  double
+  ratio(SampleIndex i) const
+  {
+    const double h = height[i];
+    const double r = radius[i];
+    if (!(h > 0) || !std::isfinite(r))
+      return std::numeric_limits<double>::infinity();
+    return r / h;
+  }
+};
+
+} // namespace cocone
+} // namespace pcl

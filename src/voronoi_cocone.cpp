@@ -1,0 +1,695 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "delaunay.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <new>
+#include <sstream>
+
+namespace pcl {
+namespace cocone {
+
+const char*
+toString(Status status)
+{
+  switch (status) {
+  case Status::ok:
+    return "ok";
+  case Status::not_computed:
+    return "not_computed";
+  case Status::too_few_points:
+    return "too_few_points";
+  case Status::non_finite_input:
+    return "non_finite_input";
+  case Status::degenerate_dimension:
+    return "degenerate_dimension";
+  case Status::too_many_points:
+    return "too_many_points";
+  case Status::invalid_parameter:
+    return "invalid_parameter";
+  case Status::internal_error:
+    return "internal_error";
+  }
+  return "unknown";
+}
+
+namespace detail {
+
+// ---------------------------------------------------------------------------------
+const std::vector<CellHandle>&
+StarGatherer::gather(VertexHandle v)
+{
+  cells_.clear();
+  if (++stamp_ == 0) { // wrapped around: forget every old entry
+    std::fill(stamps_.begin(), stamps_.end(), 0u);
+    stamp_ = 1;
+  }
+  const CellHandle start = v->cell();
+  insert(&*start);
+  cells_.push_back(start);
+  for (std::size_t head = 0; head < cells_.size(); ++head) {
+    const CellHandle c = cells_[head];
+    const int iv = c->index(v);
+    for (int i = 0; i < 4; ++i) {
+      if (i == iv)
+        continue;
+      const CellHandle n = c->neighbor(i); // shares facet i, which contains v
+      if (insert(&*n))
+        cells_.push_back(n);
+    }
+  }
+  return cells_;
+}
+
+bool
+StarGatherer::insert(const void* key)
+{
+  // Keep the load factor under 1/2: stars hold about 25 cells, a few hundreds at worst.
+  if (keys_.size() < 2 * (cells_.size() + 1)) {
+    const std::size_t capacity = std::max<std::size_t>(64, 4 * (cells_.size() + 1));
+    std::size_t size = 64;
+    while (size < capacity)
+      size *= 2;
+    std::vector<const void*> old_keys;
+    old_keys.reserve(cells_.size());
+    for (const CellHandle& c : cells_)
+      old_keys.push_back(&*c);
+    keys_.assign(size, nullptr);
+    stamps_.assign(size, 0u);
+    stamp_ = 1;
+    for (const void* k : old_keys) {
+      std::size_t slot = (reinterpret_cast<std::uintptr_t>(k) >> 4) & (size - 1);
+      while (stamps_[slot] == stamp_)
+        slot = (slot + 1) & (size - 1);
+      keys_[slot] = k;
+      stamps_[slot] = stamp_;
+    }
+  }
+  const std::size_t mask = keys_.size() - 1;
+  std::size_t slot = (reinterpret_cast<std::uintptr_t>(key) >> 4) & mask;
+  while (stamps_[slot] == stamp_) {
+    if (keys_[slot] == key)
+      return false;
+    slot = (slot + 1) & mask;
+  }
+  keys_[slot] = key;
+  stamps_[slot] = stamp_;
+  return true;
+}
+
+// ---------------------------------------------------------------------------------
+namespace {
+
+ConeSide
+classify(const Eigen::Vector3d& x, const Eigen::Vector3d& axis, double sin_theta)
+{
+  const double along = x.dot(axis);
+  const double limit = sin_theta * x.norm();
+  if (along > limit)
+    return ConeSide::upper;
+  if (along < -limit)
+    return ConeSide::lower;
+  return ConeSide::inside;
+}
+
+} // namespace
+
+EdgeInCocone
+clipVoronoiEdge(const Eigen::Vector3d& start,
+                const Eigen::Vector3d& direction,
+                bool is_ray,
+                const Eigen::Vector3d& axis,
+                double sin_theta)
+{
+  EdgeInCocone result;
+  const ConeSide side_start = classify(start, axis, sin_theta);
+  // A ray's far end is classified by its direction.
+  const ConeSide side_end =
+      classify(is_ray ? direction : Eigen::Vector3d(start + direction), axis, sin_theta);
+  // Each nappe of the double cone is convex: a segment with both ends in the same nappe
+  // stays in it; otherwise it crosses the cocone.
+  result.meets = side_start == ConeSide::inside || side_end == ConeSide::inside ||
+                 side_start != side_end;
+  if (!result.meets)
+    return result;
+  if (is_ray && side_end == ConeSide::inside) {
+    result.unbounded = true;
+    return result;
+  }
+  // Points x(t) = start + t direction inside the cocone satisfy
+  //   f(t) = (x.axis)^2 - sin^2 |x|^2 <= 0,
+  // a quadratic a t^2 + 2 b t + c. |x(t)| is convex in t, so its maximum over the
+  // feasible part sits at an end of a feasible interval: an end of the edge that is
+  // inside, or a root of f.
+  const double s2 = sin_theta * sin_theta;
+  const double sv = start.dot(axis);
+  const double dv = direction.dot(axis);
+  const double a = dv * dv - s2 * direction.squaredNorm();
+  const double b = sv * dv - s2 * start.dot(direction);
+  const double c = sv * sv - s2 * start.squaredNorm();
+  const double t_max = is_ray ? std::numeric_limits<double>::infinity() : 1.0;
+  double best = 0;
+  const auto consider = [&](double t) {
+    if (t >= 0 && t <= t_max)
+      best = std::max(best, (start + t * direction).squaredNorm());
+  };
+  if (side_start == ConeSide::inside)
+    consider(0);
+  if (!is_ray && side_end == ConeSide::inside)
+    consider(1);
+  const double scale = std::abs(a) + std::abs(b) + std::abs(c);
+  if (std::abs(a) > 1e-14 * scale) {
+    const double disc = b * b - a * c;
+    if (disc >= 0) {
+      // Numerically stable roots of a t^2 + 2 b t + c.
+      const double q = -(b + std::copysign(std::sqrt(disc), b));
+      consider(q / a);
+      if (q != 0)
+        consider(c / q);
+    }
+    else {
+      consider(-b / a); // rounding hid a tangency: take the closest approach
+    }
+  }
+  else if (b != 0) {
+    consider(-c / (2 * b));
+  }
+  result.max_distance2 = best;
+  return result;
+}
+
+// ---------------------------------------------------------------------------------
+Eigen::Vector3d
+hullFacetNormal(CellHandle c, int i)
+{
+  const Eigen::Vector3d a = toEigen(c->vertex((i + 1) & 3)->point());
+  const Eigen::Vector3d b = toEigen(c->vertex((i + 2) & 3)->point());
+  const Eigen::Vector3d d = toEigen(c->vertex((i + 3) & 3)->point());
+  Eigen::Vector3d normal = (b - a).cross(d - a);
+  // Outward: away from the vertex of c opposite the facet.
+  if (normal.dot(toEigen(c->vertex(i)->point()) - a) > 0)
+    normal = -normal;
+  const double length = normal.norm();
+  return length > 0 ? Eigen::Vector3d(normal / length) : normal;
+}
+
+void
+computePoles(const Delaunay& dt,
+             VertexHandle v,
+             const std::vector<CellHandle>& star,
+             CellGeometry& geometry)
+{
+  const Eigen::Vector3d p = toEigen(v->point());
+  Eigen::Vector3d hull_normal_sum = Eigen::Vector3d::Zero();
+  double farthest2 = -1;
+  geometry.unbounded = false;
+  for (const CellHandle& c : star) {
+    if (dt.is_infinite(c)) {
+      // The finite facet of an infinite cell is a convex-hull triangle at p.
+      geometry.unbounded = true;
+      const int inf = c->index(dt.infinite_vertex());
+      const CellHandle inside = c->neighbor(inf);
+      hull_normal_sum += hullFacetNormal(inside, inside->index(c));
+      continue;
+    }
+    const Eigen::Vector3d& center = c->center();
+    const double d2 = (center - p).squaredNorm();
+    if (d2 > farthest2) {
+      farthest2 = d2;
+      geometry.positive_pole = center;
+    }
+  }
+  if (geometry.unbounded) {
+    const double length = hull_normal_sum.norm();
+    if (length > 1e-12)
+      geometry.pole_vector = hull_normal_sum / length;
+    else if (farthest2 > 0) // opposite hull normals cancel: fall back to the far vertex
+      geometry.pole_vector = (geometry.positive_pole - p).normalized();
+    else
+      geometry.pole_vector = Eigen::Vector3d::UnitZ();
+    geometry.positive_pole.setConstant(std::numeric_limits<double>::infinity());
+  }
+  else {
+    geometry.pole_vector = (geometry.positive_pole - p).normalized();
+  }
+
+  double negative2 = -1;
+  for (const CellHandle& c : star) {
+    if (dt.is_infinite(c))
+      continue;
+    const Eigen::Vector3d to_center = c->center() - p;
+    if (to_center.dot(geometry.pole_vector) >= 0)
+      continue;
+    const double d2 = to_center.squaredNorm();
+    if (d2 > negative2) {
+      negative2 = d2;
+      geometry.negative_pole = to_center + p;
+    }
+  }
+  geometry.has_negative_pole = negative2 > 0;
+  geometry.height = geometry.has_negative_pole ? std::sqrt(negative2)
+                                               : std::numeric_limits<double>::quiet_NaN();
+}
+
+} // namespace detail
+
+// ---------------------------------------------------------------------------------
+using namespace detail;
+
+VoronoiCocone::VoronoiCocone() : impl_(new Impl), cocone_angle_(M_PI / 8) {}
+VoronoiCocone::~VoronoiCocone() = default;
+VoronoiCocone::VoronoiCocone(VoronoiCocone&&) noexcept = default;
+VoronoiCocone&
+VoronoiCocone::operator=(VoronoiCocone&&) noexcept = default;
+
+Status
+VoronoiCocone::setCoconeAngle(double theta)
+{
+  if (!(theta > 0 && theta < M_PI / 2))
+    return Status::invalid_parameter;
+  cocone_angle_ = theta;
+  return Status::ok;
+}
+
+double
+VoronoiCocone::getCoconeAngle() const
+{
+  return cocone_angle_;
+}
+
+void
+VoronoiCocone::setNumberOfThreads(unsigned threads)
+{
+  threads_ = threads;
+}
+
+unsigned
+VoronoiCocone::getNumberOfThreads() const
+{
+  return threads_;
+}
+
+Status
+VoronoiCocone::status() const
+{
+  return impl_->status;
+}
+
+const std::string&
+VoronoiCocone::errorMessage() const
+{
+  return impl_->message;
+}
+
+std::size_t
+VoronoiCocone::size() const
+{
+  return impl_->representative.size();
+}
+
+std::size_t
+VoronoiCocone::numUniqueSamples() const
+{
+  return impl_->unique_count;
+}
+
+SampleIndex
+VoronoiCocone::representative(SampleIndex i) const
+{
+  return impl_->representative[i];
+}
+
+const std::vector<Eigen::Vector3d>&
+VoronoiCocone::centeredPoints() const
+{
+  return impl_->centered;
+}
+
+const Eigen::Vector3d&
+VoronoiCocone::offset() const
+{
+  return impl_->offset;
+}
+
+const Eigen::Vector3d&
+VoronoiCocone::poleVector(SampleIndex i) const
+{
+  return impl_->pole_vector[impl_->representative[i]];
+}
+
+bool
+VoronoiCocone::positivePoleAtInfinity(SampleIndex i) const
+{
+  return impl_->unbounded[impl_->representative[i]] != 0;
+}
+
+Eigen::Vector3d
+VoronoiCocone::positivePole(SampleIndex i) const
+{
+  const SampleIndex r = impl_->representative[i];
+  if (impl_->unbounded[r])
+    return Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  return impl_->positive_pole[r] + impl_->offset;
+}
+
+Eigen::Vector3d
+VoronoiCocone::negativePole(SampleIndex i) const
+{
+  const SampleIndex r = impl_->representative[i];
+  if (!(impl_->height[r] > 0))
+    return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  return impl_->negative_pole[r] + impl_->offset;
+}
+
+double
+VoronoiCocone::height(SampleIndex i) const
+{
+  return impl_->height[impl_->representative[i]];
+}
+
+double
+VoronoiCocone::coconeRadius(SampleIndex i) const
+{
+  return impl_->radius[impl_->representative[i]];
+}
+
+double
+VoronoiCocone::ratio(SampleIndex i) const
+{
+  return impl_->ratio(impl_->representative[i]);
+}
+
+const std::vector<MarkedTriangle>&
+VoronoiCocone::markedTriangles() const
+{
+  return impl_->triangles;
+}
+
+IndexRange
+VoronoiCocone::trianglesAround(SampleIndex i) const
+{
+  if (impl_->triangle_offsets.empty())
+    return {};
+  const SampleIndex r = impl_->representative[i];
+  const std::uint32_t* base = impl_->triangle_ids.data();
+  return {base + impl_->triangle_offsets[r], base + impl_->triangle_offsets[r + 1]};
+}
+
+void
+VoronoiCocone::coconeNeighbours(SampleIndex i, std::vector<SampleIndex>& neighbours) const
+{
+  neighbours.clear();
+  const SampleIndex r = impl_->representative[i];
+  for (const std::uint32_t t : trianglesAround(r)) {
+    const MarkedTriangle& triangle = impl_->triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      if (triangle.vertex[k] != r || !triangle.isMarkedBy(k))
+        continue;
+      for (int other = 0; other < 3; ++other)
+        if (other != k)
+          neighbours.push_back(triangle.vertex[other]);
+    }
+  }
+  std::sort(neighbours.begin(), neighbours.end());
+  neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
+}
+
+void
+VoronoiCocone::delaunayNeighbours(SampleIndex i, std::vector<SampleIndex>& neighbours) const
+{
+  neighbours.clear();
+  const VertexHandle v = impl_->vertex_of.empty()
+                             ? VertexHandle()
+                             : impl_->vertex_of[impl_->representative[i]];
+  if (v == VertexHandle())
+    return;
+  std::vector<VertexHandle> adjacent;
+  impl_->dt.finite_adjacent_vertices(v, std::back_inserter(adjacent));
+  for (const VertexHandle& w : adjacent)
+    neighbours.push_back(w->info());
+  std::sort(neighbours.begin(), neighbours.end());
+}
+
+void
+VoronoiCocone::delaunayTrianglesAmong(
+    const std::vector<SampleIndex>& samples,
+    std::vector<std::array<SampleIndex, 3>>& triangles) const
+{
+  triangles.clear();
+  if (impl_->vertex_of.empty())
+    return;
+  std::vector<SampleIndex> members;
+  members.reserve(samples.size());
+  for (const SampleIndex s : samples)
+    members.push_back(impl_->representative[s]);
+  std::sort(members.begin(), members.end());
+  members.erase(std::unique(members.begin(), members.end()), members.end());
+  const auto is_member = [&](SampleIndex s) {
+    return std::binary_search(members.begin(), members.end(), s);
+  };
+  StarGatherer star;
+  for (const SampleIndex s : members) {
+    const VertexHandle v = impl_->vertex_of[s];
+    if (v == VertexHandle())
+      continue;
+    for (const CellHandle& c : star.gather(v)) {
+      for (int i = 0; i < 4; ++i) {
+        if (c->vertex(i) == v)
+          continue;
+        std::array<SampleIndex, 3> t;
+        int k = 0;
+        bool keep = true;
+        for (int j = 0; j < 4 && keep; ++j) {
+          if (j == i)
+            continue;
+          const VertexHandle w = c->vertex(j);
+          if (impl_->dt.is_infinite(w) || !is_member(w->info()))
+            keep = false;
+          else
+            t[k++] = w->info();
+        }
+        // Report each triangle from its smallest vertex, once (it is in two cells).
+        std::sort(t.begin(), t.end());
+        if (keep && t[0] == s && std::less<const void*>()(&*c, &*c->neighbor(i)))
+          triangles.push_back(t);
+      }
+    }
+  }
+  std::sort(triangles.begin(), triangles.end());
+}
+
+// ---------------------------------------------------------------------------------
+namespace {
+
+/** Circumcenters, poles, heights, radii and cocone marks of every sample, and the
+ * marked triangles with their incidence lists. */
+void
+computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
+{
+  Delaunay& dt = d.dt;
+  const std::size_t n = d.representative.size();
+
+  // Number the finite cells; compute each circumcenter once, before any concurrent read.
+  std::vector<CellHandle> cells;
+  cells.reserve(dt.number_of_finite_cells());
+  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
+    c->cellIndex() = static_cast<std::uint32_t>(cells.size());
+    cells.push_back(c);
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t k = range.begin(); k != range.end(); ++k)
+                        cells[k]->storeCenter();
+                    });
+
+  std::vector<VertexHandle> vertices;
+  vertices.reserve(d.unique_count);
+  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
+    vertices.push_back(v);
+
+  d.pole_vector.assign(n, Eigen::Vector3d::Zero());
+  d.positive_pole.assign(n, Eigen::Vector3d::Zero());
+  d.negative_pole.assign(n, Eigen::Vector3d::Zero());
+  d.height.assign(n, std::numeric_limits<double>::quiet_NaN());
+  d.radius.assign(n, std::numeric_limits<double>::quiet_NaN());
+  d.unbounded.assign(n, 0);
+
+  // marks[c][j] bit i: vertex j of cell c marks facet i of c. Only the thread handling
+  // vertex j writes that byte, so no synchronisation is needed.
+  std::vector<std::array<std::uint8_t, 4>> marks(cells.size(), {0, 0, 0, 0});
+  tbb::enumerable_thread_specific<StarGatherer> gatherers;
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, vertices.size(), 512),
+      [&](const tbb::blocked_range<std::size_t>& range) {
+        StarGatherer& gatherer = gatherers.local();
+        CellGeometry geometry;
+        for (std::size_t k = range.begin(); k != range.end(); ++k) {
+          const VertexHandle v = vertices[k];
+          const std::vector<CellHandle>& star = gatherer.gather(v);
+          computePoles(dt, v, star, geometry);
+          const SampleIndex s = v->info();
+          d.pole_vector[s] = geometry.pole_vector;
+          d.positive_pole[s] = geometry.positive_pole;
+          d.negative_pole[s] = geometry.negative_pole;
+          d.height[s] = geometry.height;
+          d.unbounded[s] = geometry.unbounded ? 1 : 0;
+          d.radius[s] = computeCoconeRadius(
+              dt, v, star, geometry.pole_vector, sin_theta,
+              [&](CellHandle c, int i) {
+                marks[c->cellIndex()][c->index(v)] |= static_cast<std::uint8_t>(1u << i);
+              });
+        }
+      });
+
+  // Collect the marked triangles, each from the cell that owns its facet (the same
+  // rule computeCoconeRadius uses), in cell order: deterministic.
+  d.triangles.clear();
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    const CellHandle c = cells[k];
+    for (int i = 0; i < 4; ++i) {
+      const CellHandle nb = c->neighbor(i);
+      if (!dt.is_infinite(nb) && std::less<const void*>()(&*nb, &*c))
+        continue;
+      MarkedTriangle triangle;
+      triangle.marked_by = 0;
+      for (int m = 0; m < 3; ++m) {
+        const int j = (i + 1 + m) & 3;
+        triangle.vertex[m] = c->vertex(j)->info();
+        if ((marks[k][j] >> i) & 1u)
+          triangle.marked_by |= static_cast<std::uint8_t>(1u << m);
+      }
+      if (triangle.marked_by != 0)
+        d.triangles.push_back(triangle);
+    }
+  }
+
+  // Incidence lists (CSR by sample).
+  d.triangle_offsets.assign(n + 1, 0);
+  for (const MarkedTriangle& t : d.triangles)
+    for (const SampleIndex s : t.vertex)
+      ++d.triangle_offsets[s + 1];
+  for (std::size_t i = 0; i < n; ++i)
+    d.triangle_offsets[i + 1] += d.triangle_offsets[i];
+  d.triangle_ids.resize(d.triangle_offsets[n]);
+  std::vector<std::uint32_t> fill(d.triangle_offsets.begin(), d.triangle_offsets.end() - 1);
+  for (std::size_t t = 0; t < d.triangles.size(); ++t)
+    for (const SampleIndex s : d.triangles[t].vertex)
+      d.triangle_ids[fill[s]++] = static_cast<std::uint32_t>(t);
+}
+
+} // namespace
+
+Status
+VoronoiCocone::compute(const std::vector<Eigen::Vector3d>& points)
+{
+  Impl& d = *impl_;
+  d = Impl();
+  const auto fail = [&](Status status, const std::string& message) {
+    Impl fresh;
+    fresh.status = status;
+    fresh.message = message;
+    d = std::move(fresh);
+    return status;
+  };
+
+  const std::size_t n = points.size();
+  if (n >= static_cast<std::size_t>(kNoSample))
+    return fail(Status::too_many_points, "more points than 32-bit sample indices address");
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!points[i].allFinite()) {
+      std::ostringstream message;
+      message << "point " << i << " has a non-finite coordinate";
+      return fail(Status::non_finite_input, message.str());
+    }
+    sum += points[i];
+  }
+  if (n < 4)
+    return fail(Status::too_few_points,
+                "need at least 4 points for a 3D Voronoi diagram, got " + std::to_string(n));
+
+  try {
+    runInArena(threads_, [&] {
+      d.offset = sum / static_cast<double>(n);
+      d.centered.resize(n);
+      for (std::size_t i = 0; i < n; ++i)
+        d.centered[i] = points[i] - d.offset;
+
+      // Bulk insertion sorts the points spatially (far faster than one by one).
+      {
+        std::vector<std::pair<Point, SampleIndex>> input;
+        input.reserve(n);
+        for (std::size_t i = 0; i < n; ++i)
+          input.emplace_back(Point(d.centered[i].x(), d.centered[i].y(), d.centered[i].z()),
+                             static_cast<SampleIndex>(i));
+        d.dt.insert(input.begin(), input.end());
+      }
+
+      // Identical points collapse into one vertex. Map every input point to the
+      // smallest index of its group, so nothing is lost or renumbered.
+      std::vector<VertexHandle> owner(n);
+      for (auto v = d.dt.finite_vertices_begin(); v != d.dt.finite_vertices_end(); ++v)
+        owner[v->info()] = v;
+      d.unique_count = d.dt.number_of_vertices();
+      Delaunay::Cell_handle hint;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (owner[i] != VertexHandle())
+          continue;
+        Delaunay::Locate_type type;
+        int li, lj;
+        const Point query(d.centered[i].x(), d.centered[i].y(), d.centered[i].z());
+        hint = d.dt.locate(query, type, li, lj, hint);
+        if (type != Delaunay::VERTEX)
+          throw std::runtime_error("a point missing from the triangulation is no vertex");
+        owner[i] = hint->vertex(li);
+        // CGAL kept whichever copy its spatial sort met first; name the group after
+        // its smallest index instead.
+        owner[i]->info() = std::min<SampleIndex>(owner[i]->info(), static_cast<SampleIndex>(i));
+      }
+      d.representative.resize(n);
+      d.vertex_of.assign(n, VertexHandle());
+      for (std::size_t i = 0; i < n; ++i) {
+        d.representative[i] = owner[i]->info();
+        if (d.representative[i] == i)
+          d.vertex_of[i] = owner[i];
+      }
+    });
+  }
+  catch (const std::bad_alloc&) {
+    return fail(Status::internal_error, "out of memory while building the Delaunay triangulation");
+  }
+  catch (const std::exception& e) {
+    return fail(Status::internal_error, std::string("Delaunay triangulation failed: ") + e.what());
+  }
+
+  if (d.unique_count < 4)
+    return fail(Status::too_few_points,
+                "need at least 4 distinct points, got " + std::to_string(d.unique_count));
+  if (d.dt.dimension() < 3) {
+    const int dim = d.dt.dimension();
+    return fail(Status::degenerate_dimension,
+                std::string("all points are ") + (dim == 2 ? "coplanar" : "collinear") +
+                    ": no 3D Voronoi cell to measure");
+  }
+
+  try {
+    runInArena(threads_, [&] { computeGeometry(d, std::sin(cocone_angle_)); });
+  }
+  catch (const std::bad_alloc&) {
+    return fail(Status::internal_error, "out of memory while computing Voronoi geometry");
+  }
+  catch (const std::exception& e) {
+    return fail(Status::internal_error, std::string("Voronoi geometry failed: ") + e.what());
+  }
+  d.status = Status::ok;
+  d.message.clear();
+  return Status::ok;
+}
+
+} // namespace cocone
+} // namespace pcl

@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Analytic test surfaces, sampled in the tests themselves (no data files needed).
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace pcl {
+namespace cocone {
+namespace test {
+
+/** A sample of an analytic surface with the facts the tests check results against. */
+struct SampledShape
+{
+  std::string name;
+  std::vector<Eigen::Vector3d> points;
+  /** Unit surface normal at each point (outward for closed shapes). On the cube's
+   * faces the face normal. */
+  std::vector<Eigen::Vector3d> normals;
+  double area = 0; ///< surface area
+  bool closed = true;
+  int genus = 0;
+  int boundary_loops = 0;
+
+  /** sqrt(area / n): the "spacing" the tests measure distances in. */
+  double
+  spacing() const;
+
+  /** Dense points (spacing/4 apart or closer) along the true rim of an open shape, and
+   * along the sharp edges of the cube; empty for smooth closed shapes. */
+  std::vector<Eigen::Vector3d> rim;
+
+  /** Distance from a point of the surface to the rim (open shapes) or to the nearest
+   * sharp edge (cube); +infinity where there is none. */
+  std::function<double(const Eigen::Vector3d&)> distance_to_rim;
+
+  /** Local feature size at a point of the surface (distance to the medial axis), where
+   * known in closed form (sphere, torus); empty otherwise. */
+  std::function<double(const Eigen::Vector3d&)> local_feature_size;
+
+  /** Distance from any point of space to the surface (exact or a tight
+   * approximation: within 1% of the spacing). */
+  std::function<double(const Eigen::Vector3d&)> distance_to_surface;
+};
+
+// Every generator returns exactly n points, deterministic for a given seed, spread as
+// blue noise (well separated, no large gaps: the largest empty disc on the surface is
+// at most about 1.5 spacings), and moved off the surface by a tiny normal jitter of
+// 1e-5 of the bounding-box diagonal so that no four points are exactly co-spherical
+// (exact samples of analytic surfaces make Delaunay slow and degenerate).
+
+/** Unit sphere centred at the origin. */
+SampledShape
+sampleSphere(std::size_t n, std::uint32_t seed = 1);
+
+/** Sphere of radius 1 whose cap within 40 degrees of +z is sampled 8 times denser than
+ * the rest (per unit area). */
+SampledShape
+sampleSphereWithDenseCap(std::size_t n, std::uint32_t seed = 1);
+
+/** Torus around the z axis, major radius 1, minor radius 0.35 (genus 1). */
+SampledShape
+sampleTorus(std::size_t n, std::uint32_t seed = 1);
+
+/** Tube of radius 0.25 around the trefoil knot
+ * (sin t + 2 sin 2t, cos t - 2 cos 2t, -sin 3t), t in [0, 2 pi): the paper's KNOT
+ * (closed, genus 1). */
+SampledShape
+sampleTrefoilKnot(std::size_t n, std::uint32_t seed = 1);
+
+/** A closed genus-3 surface: a rounded slab (about 3 x 1 x 0.5) with three round
+ * through-holes in a row. */
+SampledShape
+sampleGenus3(std::size_t n, std::uint32_t seed = 1);
+
+/** Upper unit hemisphere z >= 0 (open: one boundary loop, the equator). */
+SampledShape
+sampleHemisphere(std::size_t n, std::uint32_t seed = 1);
+
+/** Monkey saddle z = x^3 - 3 x y^2 over the unit disc (the paper's MONKEYSADDLE; open:
+ * one boundary loop). */
+SampledShape
+sampleMonkeySaddle(std::size_t n, std::uint32_t seed = 1);
+
+/** Open cylinder of radius 0.5 and height 2 around the z axis (two boundary loops). */
+SampledShape
+sampleOpenCylinder(std::size_t n, std::uint32_t seed = 1);
+
+/** Surface of the cube [-1, 1]^3: closed, genus 0, 12 sharp edges. */
+SampledShape
+sampleCube(std::size_t n, std::uint32_t seed = 1);
+
+} // namespace test
+} // namespace cocone
+} // namespace pcl
