@@ -1,0 +1,204 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <pcl/cocone/boundary_samples.h>
+#include <pcl/cocone/export.h>
+#include <pcl/cocone/voronoi_cocone.h>
+#include <pcl/features/feature.h>
+#include <pcl/point_types.h>
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace pcl {
+
+/** \brief Detects the samples near undersampling (boundaries, sharp features, thin or
+ * sparsely sampled parts) from the geometry of their Voronoi cells: algorithm BOUNDARY
+ * of Dey, Giesen, Goswami, Hudson, Wenger and Zhao, "Undersampling and Oversampling in
+ * Sample Based Shape Modeling", IEEE Visualization 2001.
+ *
+ * A sample is *flat* when its Voronoi cell is long and thin (cocone radius r_p at most
+ * rho times the height h_p) and its pole line agrees, within alpha, with those of the
+ * samples whose cocone meets its cell. Flat samples are grown through cocone neighbours
+ * that are thin and agree; every sample not reached is a boundary sample. On a smooth
+ * open surface the flags mark the outermost row of samples along the rim (the rim
+ * vertices of a correct reconstruction); they also mark samples along sharp edges and
+ * in thin, undersampled parts.
+ *
+ * Unlike pcl::BoundaryEstimation it needs no normals, no search radius and no k: the
+ * one Delaunay triangulation of the cloud defines every neighbourhood. Output is
+ * pcl::Boundary by default, so it drops into code written for BoundaryEstimation.
+ *
+ * Index spaces and special points:
+ * - the Voronoi diagram is built from every finite point of the input cloud; the output
+ *   has one row per index (setIndices) in that order, like every pcl::Feature;
+ * - points with a NaN or infinite coordinate are skipped: their row says
+ *   boundary_point = 0, isValid() is false, the per-point values are NaN and the
+ *   output's is_dense is false;
+ * - exact duplicates share one Voronoi cell and get the flag of the first of them;
+ * - fewer than 4 distinct finite points, or all of them coplanar or collinear, have
+ *   no 3D Voronoi cell: compute() reports it with PCL_ERROR and returns an empty
+ *   output;
+ * - setSearchSurface() is not supported (the cells are those of the input cloud).
+ *
+ * Besides the flags, the per-point Voronoi values are available after compute(): the
+ * unit pole vector (a normal estimate oriented towards the positive pole, which lies on
+ * the side where the cell extends farther), the height h_p (an estimate of the local
+ * feature size), the cocone radius r_p and the ratio r_p / h_p.
+ *
+ * \tparam PointInT a point type with x, y, z
+ * \tparam PointOutT a point type with a boundary_point field (default pcl::Boundary)
+ * \ingroup features
+ */
+template <typename PointInT, typename PointOutT = pcl::Boundary>
+class BoundarySampleEstimation : public Feature<PointInT, PointOutT>
+{
+public:
+  using Ptr = shared_ptr<BoundarySampleEstimation<PointInT, PointOutT>>;
+  using ConstPtr = shared_ptr<const BoundarySampleEstimation<PointInT, PointOutT>>;
+  using PointCloudOut = typename Feature<PointInT, PointOutT>::PointCloudOut;
+
+  BoundarySampleEstimation() { Feature<PointInT, PointOutT>::feature_name_ = "BoundarySampleEstimation"; }
+
+  /** \brief Set rho, the ratio bound of the flatness test r_p / h_p <= rho.
+   * Dimensionless; default 0.99 (the paper's value for all its data); valid range
+   * (0, 10]. Smaller values flag more samples. Out of range: PCL_ERROR, unchanged. */
+  void
+  setRatioBound(double rho);
+  /** \brief Get rho (see setRatioBound). */
+  double
+  getRatioBound() const
+  {
+    return parameters_.ratio_bound;
+  }
+
+  /** \brief Set alpha, the largest acute angle between pole lines of neighbouring flat
+   * samples. Radians; default pi/6; valid range (0, pi/2]. Smaller values flag more
+   * samples near curved or sharp regions. Out of range: PCL_ERROR, unchanged. */
+  void
+  setNormalAngle(double alpha);
+  /** \brief Get alpha (see setNormalAngle). */
+  double
+  getNormalAngle() const
+  {
+    return parameters_.normal_angle;
+  }
+
+  /** \brief Set theta, the cocone angle: the cocone of p is the part of its Voronoi
+   * cell within theta of the plane orthogonal to the pole vector. Radians; default
+   * pi/8; valid range (0, pi/2). Out of range: PCL_ERROR, unchanged. */
+  void
+  setCoconeAngle(double theta);
+  /** \brief Get theta (see setCoconeAngle). */
+  double
+  getCoconeAngle() const
+  {
+    return cocone_angle_;
+  }
+
+  /** \brief Beyond the paper: also flag \a rings rings of cocone neighbours around the
+   * boundary samples, giving a band along boundaries like pcl::BoundaryEstimation's.
+   * Default 0 (BOUNDARY as published); valid range 0 to 64. */
+  void
+  setBoundaryBandRings(unsigned rings);
+  /** \brief Get the number of band rings (see setBoundaryBandRings). */
+  unsigned
+  getBoundaryBandRings() const
+  {
+    return parameters_.band_rings;
+  }
+
+  /** \brief Number of threads for the per-sample work; 0 (default) uses every core. */
+  void
+  setNumberOfThreads(unsigned threads)
+  {
+    threads_ = threads;
+  }
+  /** \brief Get the number of threads (0: automatic). */
+  unsigned
+  getNumberOfThreads() const
+  {
+    return threads_;
+  }
+
+  /** \name Per-point results of the last compute(), one entry per output row. */
+  /** \{ */
+  /** \brief 1 where the input point was finite and took part, 0 where it was skipped. */
+  const std::vector<std::uint8_t>&
+  getValidity() const
+  {
+    return valid_;
+  }
+  /** \brief Unit pole vectors (oriented towards the positive pole); NaN where invalid. */
+  const std::vector<Eigen::Vector3f>&
+  getPoleVectors() const
+  {
+    return pole_vectors_;
+  }
+  /** \brief Heights h_p = |p- - p| in input units (local feature size estimate); NaN
+   * where invalid or where the cell has no negative pole. */
+  const std::vector<float>&
+  getHeights() const
+  {
+    return heights_;
+  }
+  /** \brief Cocone radii r_p in input units; +infinity for an unbounded cocone; NaN
+   * where invalid. */
+  const std::vector<float>&
+  getCoconeRadii() const
+  {
+    return radii_;
+  }
+  /** \brief Ratios r_p / h_p; +infinity where h_p is undefined or r_p infinite; NaN
+   * where invalid. */
+  const std::vector<float>&
+  getRatios() const
+  {
+    return ratios_;
+  }
+  /** \brief Number of boundary samples among the output rows. */
+  std::size_t
+  getNumberOfBoundarySamples() const
+  {
+    return boundary_count_;
+  }
+  /** \} */
+
+protected:
+  using Feature<PointInT, PointOutT>::feature_name_;
+  using Feature<PointInT, PointOutT>::getClassName;
+  using Feature<PointInT, PointOutT>::input_;
+  using Feature<PointInT, PointOutT>::indices_;
+  using Feature<PointInT, PointOutT>::surface_;
+  using Feature<PointInT, PointOutT>::fake_surface_;
+
+  /** \brief Checks the input without asking for a search radius or k, and builds no
+   * search tree: the Delaunay triangulation replaces both. */
+  bool
+  initCompute() override;
+
+  void
+  computeFeature(PointCloudOut& output) override;
+
+private:
+  void
+  clearResults(std::size_t rows);
+
+  cocone::BoundaryParameters parameters_;
+  double cocone_angle_ = M_PI / 8;
+  unsigned threads_ = 0;
+
+  std::vector<std::uint8_t> valid_;
+  std::vector<Eigen::Vector3f> pole_vectors_;
+  std::vector<float> heights_;
+  std::vector<float> radii_;
+  std::vector<float> ratios_;
+  std::size_t boundary_count_ = 0;
+};
+
+} // namespace pcl
+
+#ifdef PCL_NO_PRECOMPILE
+#include <pcl/cocone/impl/boundary_sample_estimation.hpp>
+#endif

@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+/**
+ * \file
+ * The one place where the PCL-facing templates turn a cloud into core samples.
+ */
+#pragma once
+
+#include <pcl/common/point_tests.h>
+#include <pcl/point_cloud.h>
+#include <pcl/types.h>
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace pcl {
+namespace cocone {
+
+/** \brief Collects the finite points of \a cloud at \a indices as double-precision
+ * samples.
+ * \param[in] cloud the input cloud
+ * \param[in] indices the cloud indices to consider, in order
+ * \param[out] samples one entry per finite point, in the order of \a indices
+ * \param[out] cloud_index for each sample, its index in \a cloud
+ * \return the number of points skipped because a coordinate is NaN or infinite */
+template <typename PointT>
+std::size_t
+gatherFiniteSamples(const pcl::PointCloud<PointT>& cloud,
+                    const pcl::Indices& indices,
+                    std::vector<Eigen::Vector3d>& samples,
+                    pcl::Indices& cloud_index)
+{
+  samples.clear();
+  cloud_index.clear();
+  samples.reserve(indices.size());
+  cloud_index.reserve(indices.size());
+  std::size_t skipped = 0;
+  for (const pcl::index_t i : indices) {
+    const PointT& point = cloud[i];
+    if (!pcl::isXYZFinite(point)) {
+      ++skipped;
+      continue;
+    }
+    samples.emplace_back(point.x, point.y, point.z);
+    cloud_index.push_back(i);
+  }
+  return skipped;
+}
+
+} // namespace cocone
+} // namespace pcl

@@ -1,0 +1,153 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <pcl/cocone/boundary_sample_estimation.h>
+#include <pcl/cocone/cloud_samples.h>
+#include <pcl/console/print.h>
+
+#include <limits>
+#include <numeric>
+
+namespace pcl {
+
+template <typename PointInT, typename PointOutT>
+void
+BoundarySampleEstimation<PointInT, PointOutT>::setRatioBound(double rho)
+{
+  if (!(rho > 0 && rho <= 10)) {
+    PCL_ERROR("[pcl::%s::setRatioBound] rho = %g is outside (0, 10]; keeping %g.\n",
+              getClassName().c_str(), rho, parameters_.ratio_bound);
+    return;
+  }
+  parameters_.ratio_bound = rho;
+}
+
+template <typename PointInT, typename PointOutT>
+void
+BoundarySampleEstimation<PointInT, PointOutT>::setNormalAngle(double alpha)
+{
+  if (!(alpha > 0 && alpha <= M_PI / 2)) {
+    PCL_ERROR("[pcl::%s::setNormalAngle] alpha = %g rad is outside (0, pi/2]; keeping "
+              "%g.\n",
+              getClassName().c_str(), alpha, parameters_.normal_angle);
+    return;
+  }
+  parameters_.normal_angle = alpha;
+}
+
+template <typename PointInT, typename PointOutT>
+void
+BoundarySampleEstimation<PointInT, PointOutT>::setCoconeAngle(double theta)
+{
+  if (!(theta > 0 && theta < M_PI / 2)) {
+    PCL_ERROR("[pcl::%s::setCoconeAngle] theta = %g rad is outside (0, pi/2); keeping "
+              "%g.\n",
+              getClassName().c_str(), theta, cocone_angle_);
+    return;
+  }
+  cocone_angle_ = theta;
+}
+
+template <typename PointInT, typename PointOutT>
+void
+BoundarySampleEstimation<PointInT, PointOutT>::setBoundaryBandRings(unsigned rings)
+{
+  if (rings > 64) {
+    PCL_ERROR("[pcl::%s::setBoundaryBandRings] %u rings is more than 64; keeping %u.\n",
+              getClassName().c_str(), rings, parameters_.band_rings);
+    return;
+  }
+  parameters_.band_rings = rings;
+}
+
+template <typename PointInT, typename PointOutT>
+bool
+BoundarySampleEstimation<PointInT, PointOutT>::initCompute()
+{
+  if (!PCLBase<PointInT>::initCompute()) {
+    PCL_ERROR("[pcl::%s::compute] No input cloud or invalid indices.\n",
+              getClassName().c_str());
+    return false;
+  }
+  if (input_->empty()) {
+    PCL_ERROR("[pcl::%s::compute] The input cloud is empty.\n", getClassName().c_str());
+    return false;
+  }
+  if (surface_ && surface_ != input_) {
+    PCL_ERROR("[pcl::%s::compute] setSearchSurface is not supported: the Voronoi cells "
+              "are those of the input cloud.\n",
+              getClassName().c_str());
+    return false;
+  }
+  if (!surface_) {
+    fake_surface_ = true;
+    surface_ = input_;
+  }
+  return true;
+}
+
+template <typename PointInT, typename PointOutT>
+void
+BoundarySampleEstimation<PointInT, PointOutT>::clearResults(std::size_t rows)
+{
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  valid_.assign(rows, 0);
+  pole_vectors_.assign(rows, Eigen::Vector3f::Constant(nan));
+  heights_.assign(rows, nan);
+  radii_.assign(rows, nan);
+  ratios_.assign(rows, nan);
+  boundary_count_ = 0;
+}
+
+template <typename PointInT, typename PointOutT>
+void
+BoundarySampleEstimation<PointInT, PointOutT>::computeFeature(PointCloudOut& output)
+{
+  const std::size_t rows = indices_->size();
+  clearResults(rows);
+
+  // The diagram of every finite input point; the rows are the indices.
+  pcl::Indices all(input_->size());
+  std::iota(all.begin(), all.end(), 0);
+  std::vector<Eigen::Vector3d> samples;
+  pcl::Indices cloud_index;
+  cocone::gatherFiniteSamples(*input_, all, samples, cloud_index);
+  std::vector<cocone::SampleIndex> sample_of(input_->size(), cocone::kNoSample);
+  for (std::size_t s = 0; s < cloud_index.size(); ++s)
+    sample_of[cloud_index[s]] = static_cast<cocone::SampleIndex>(s);
+
+  cocone::VoronoiCocone voronoi;
+  voronoi.setCoconeAngle(cocone_angle_);
+  voronoi.setNumberOfThreads(threads_);
+  if (voronoi.compute(samples) != cocone::Status::ok) {
+    PCL_ERROR("[pcl::%s::compute] %s.\n", getClassName().c_str(),
+              voronoi.errorMessage().c_str());
+    output.width = output.height = 0;
+    output.clear();
+    clearResults(0);
+    return;
+  }
+  std::vector<std::uint8_t> is_boundary;
+  cocone::detectBoundarySamples(voronoi, parameters_, is_boundary);
+
+  for (std::size_t row = 0; row < rows; ++row) {
+    const cocone::SampleIndex s = sample_of[(*indices_)[row]];
+    if (s == cocone::kNoSample) {
+      output[row].boundary_point = 0;
+      output.is_dense = false;
+      continue;
+    }
+    valid_[row] = 1;
+    output[row].boundary_point = is_boundary[s];
+    boundary_count_ += is_boundary[s];
+    pole_vectors_[row] = voronoi.poleVector(s).cast<float>();
+    heights_[row] = static_cast<float>(voronoi.height(s));
+    radii_[row] = static_cast<float>(voronoi.coconeRadius(s));
+    ratios_[row] = static_cast<float>(voronoi.ratio(s));
+  }
+}
+
+} // namespace pcl
+
+#define PCL_INSTANTIATE_BoundarySampleEstimation(T, OutT)                              \
+  template class PCL_COCONE_EXPORT pcl::BoundarySampleEstimation<T, OutT>;

@@ -1,0 +1,14 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Explicit instantiations of the PCL-facing templates for PCL's usual point types. With
+// PCL_NO_PRECOMPILE defined, the headers include their implementation instead, so
+// custom point types work too (without CGAL: the templates only call the core).
+#include <pcl/cocone/impl/boundary_sample_estimation.hpp>
+#include <pcl/impl/instantiate.hpp>
+#include <pcl/point_types.h>
+
+#define PCL_COCONE_XYZ_POINT_TYPES                                                     \
+  (pcl::PointXYZ)(pcl::PointXYZI)(pcl::PointXYZL)(pcl::PointXYZRGB)(pcl::PointXYZRGBA) \
+  (pcl::PointXYZRGBL)(pcl::PointNormal)(pcl::PointXYZINormal)(pcl::PointXYZRGBNormal)  \
+  (pcl::PointXYZLNormal)(pcl::PointWithViewpoint)
+
+PCL_INSTANTIATE_PRODUCT(BoundarySampleEstimation, (PCL_COCONE_XYZ_POINT_TYPES)((pcl::Boundary)))
