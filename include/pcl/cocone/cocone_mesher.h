@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+/**
+ * \file
+ * COCONE reconstruction with boundaries (Dey et al. 2001, section 3.4) on the geometry
+ * of a VoronoiCocone: the non-template algorithm behind CoconeReconstruction.
+ */
+#pragma once
+
+#include <pcl/cocone/boundary_samples.h>
+#include <pcl/cocone/export.h>
+#include <pcl/cocone/mesh_topology.h>
+#include <pcl/cocone/voronoi_cocone.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace pcl {
+namespace cocone {
+
+/** \brief Parameters of the reconstruction (the cocone angle is the VoronoiCocone's). */
+struct ReconstructionParameters
+{
+  /** BOUNDARY's parameters (rho, alpha); band_rings is ignored here. */
+  BoundaryParameters boundary;
+  /** Detect boundary samples and let them cast no vote. Default true; false gives the
+   * original COCONE candidate rule (a triangle needs the marks of all its vertices). */
+  bool detect_boundary = true;
+  /** Close the holes that are not true boundaries. Default true. */
+  bool stitch_holes = true;
+  /** A hole is a true boundary, and stays open, when its size (twice its area over its
+   * perimeter: the radius of a round hole, half the width of a long one) exceeds this
+   * many local sample spacings; smaller holes are stitched. The same test removes
+   * candidate triangles that cover such a hole. In local spacings (about 1.1 times
+   * sqrt(area / n) on evenly spread samples); default 2; valid range [0.5, 1000]. */
+  double true_boundary_ratio = 2;
+};
+
+/** \brief True when every value of \a parameters lies in its documented range. */
+PCL_COCONE_EXPORT bool
+isValid(const ReconstructionParameters& parameters);
+
+/** \brief What a reconstruction did, stage by stage. Sample indices are those of the
+ * VoronoiCocone. */
+struct ReconstructionReport
+{
+  /** BOUNDARY's flags, one per sample (all 0 when detection is off). */
+  std::vector<std::uint8_t> boundary_samples;
+  std::size_t candidate_triangles = 0; ///< Delaunay triangles chosen by the cocones
+  /** Candidates removed because they covered a true boundary (a hole too small against
+   * the local feature size for BOUNDARY to flag its rim, but too large against the
+   * sample spacing to be a sampling gap). */
+  std::size_t lid_triangles = 0;
+  std::size_t pruned_triangles = 0;    ///< candidates removed at sharp edges
+  std::size_t walked_triangles = 0;    ///< triangles the walk took
+  /** Walked triangles removed again because a vertex ended with several fans. */
+  std::size_t pinch_removed_triangles = 0;
+  std::size_t stitched_holes = 0;      ///< holes closed by stitching
+  std::size_t stitched_triangles = 0;  ///< Delaunay triangles added to close them
+  /** The boundary loops left open (true boundaries and holes that could not be closed),
+   * as vertex cycles oriented with the surface. */
+  std::vector<std::vector<SampleIndex>> open_loops;
+  /** Samples in no output triangle: duplicates (their representative is used instead),
+   * isolated outliers, and samples the manifold extraction had to leave out. */
+  std::vector<SampleIndex> unused_samples;
+};
+
+/** \brief Reconstructs an oriented 2-manifold (with boundary) through the samples.
+ *
+ * Stages: BOUNDARY; candidate triangles (a Delaunay triangle is a candidate when every
+ * non-boundary vertex's cocone marks it and it has at least one such vertex); pruning
+ * of triangles at sharp edges (never of triangles incident to a boundary sample, nor of
+ * triangles that a flat sheet holds on an edge, so that small gaps cannot cascade);
+ * manifold extraction by walking the outer side of the candidates, refusing any third
+ * triangle on an edge and any second fan at a vertex; orientation outward on closed
+ * components; stitching of the holes that are not true boundaries with Delaunay
+ * triangles on the hole, by the same prune and walk.
+ * \param[in] voronoi a VoronoiCocone on which compute() succeeded
+ * \param[in] parameters see ReconstructionParameters (assumed valid)
+ * \param[out] triangles oriented triangles of representative sample indices
+ * \param[out] report the stages' numbers, open loops and unused samples
+ * \return Status::ok, or not_computed when \a voronoi holds no diagram */
+PCL_COCONE_EXPORT Status
+reconstructSurface(const VoronoiCocone& voronoi,
+                   const ReconstructionParameters& parameters,
+                   std::vector<TriangleIndices>& triangles,
+                   ReconstructionReport& report);
+
+} // namespace cocone
+} // namespace pcl

@@ -1,0 +1,1106 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <pcl/cocone/cocone_mesher.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace pcl {
+namespace cocone {
+
+bool
+isValid(const ReconstructionParameters& parameters)
+{
+  return isValid(parameters.boundary) && parameters.true_boundary_ratio >= 0.5 &&
+         parameters.true_boundary_ratio <= 1000;
+}
+
+namespace {
+
+using Vector = Eigen::Vector3d;
+
+constexpr std::uint32_t kCoconeGroup = 0;
+// Triangles of polygon fills (not Delaunay triangles): never offered to a walk.
+constexpr std::uint32_t kPolygonGroup = std::numeric_limits<std::uint32_t>::max();
+// Loops longer than this are not filled as polygons (O(m^3) time, O(m^2) memory).
+constexpr std::size_t kLargestPolygonFill = 200;
+
+// State of a triangle of the pool.
+enum : std::uint8_t
+{
+  kRejected = 0,  // pruned, refused for good, or rolled back
+  kCandidate = 1, // may still be walked onto
+  kInMesh = 2     // part of the output
+};
+
+double
+circumradius(const Vector& a, const Vector& b, const Vector& c)
+{
+  const double ab = (b - a).norm(), bc = (c - b).norm(), ca = (a - c).norm();
+  const double area2 = (b - a).cross(c - a).norm(); // twice the area
+  if (!(area2 > 0))
+    return std::numeric_limits<double>::infinity();
+  return ab * bc * ca / (2 * area2);
+}
+
+/** Extracts the surface. The pool holds every triangle that may become part of it: the
+ * cocone candidates (group 0) and, later, the Delaunay triangles offered to each hole
+ * (group k for the k-th hole). */
+class Mesher
+{
+public:
+  Mesher(const VoronoiCocone& voronoi,
+         const ReconstructionParameters& parameters,
+         ReconstructionReport& report)
+  : voronoi_(voronoi)
+  , points_(voronoi.centeredPoints())
+  , parameters_(parameters)
+  , report_(report)
+  , n_(voronoi.size())
+  {}
+
+  void
+  run(std::vector<TriangleIndices>& output);
+
+private:
+  // --- pool -----------------------------------------------------------------------
+  void
+  addToPool(const TriangleIndices& t, std::uint32_t group)
+  {
+    pool_.push_back(t);
+    state_.push_back(kCandidate);
+    group_.push_back(group);
+    oriented_.push_back(t);
+  }
+  void
+  rebuildIncidence();
+  bool
+  contains(std::uint32_t t, SampleIndex v) const
+  {
+    const TriangleIndices& tri = pool_[t];
+    return tri[0] == v || tri[1] == v || tri[2] == v;
+  }
+  SampleIndex
+  apex(std::uint32_t t, SampleIndex a, SampleIndex b) const
+  {
+    const TriangleIndices& tri = pool_[t];
+    for (const SampleIndex v : tri)
+      if (v != a && v != b)
+        return v;
+    return kNoSample;
+  }
+  /** Pool triangles on edge (a, b) accepted by \a keep. */
+  template <typename Keep>
+  void
+  trianglesOnEdge(SampleIndex a, SampleIndex b, Keep&& keep, std::vector<std::uint32_t>& out) const
+  {
+    out.clear();
+    for (std::uint32_t k = offsets_[a]; k < offsets_[a + 1]; ++k) {
+      const std::uint32_t t = ids_[k];
+      if (contains(t, b) && keep(t))
+        out.push_back(t);
+    }
+  }
+  /** Mesh triangles on edge (a, b). */
+  void
+  meshOnEdge(SampleIndex a, SampleIndex b, std::vector<std::uint32_t>& out) const
+  {
+    trianglesOnEdge(a, b, [&](std::uint32_t t) { return state_[t] == kInMesh; }, out);
+  }
+  /** True when mesh triangle t traverses the edge a -> b. */
+  bool
+  traverses(std::uint32_t t, SampleIndex a, SampleIndex b) const
+  {
+    const TriangleIndices& o = oriented_[t];
+    for (int k = 0; k < 3; ++k)
+      if (o[k] == a && o[(k + 1) % 3] == b)
+        return true;
+    return false;
+  }
+  Vector
+  orientedNormal(const TriangleIndices& o) const
+  {
+    return (points_[o[1]] - points_[o[0]]).cross(points_[o[2]] - points_[o[0]]);
+  }
+
+  // --- stages ---------------------------------------------------------------------
+  void
+  measureSpacing();
+  double
+  typicalSpacing(const std::vector<SampleIndex>& samples) const;
+  bool
+  isTrueBoundary(double area, double perimeter, double spacing) const;
+  void
+  collectCandidates();
+  void
+  removeLids();
+  bool
+  fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
+                           std::vector<TriangleIndices>& fill);
+  bool
+  closes(const std::vector<SampleIndex>& loop, const std::vector<std::uint32_t>& added);
+  void
+  undo(const std::vector<std::uint32_t>& added);
+  double
+  area(const std::vector<std::uint32_t>& triangles) const;
+  std::size_t
+  labelFans(SampleIndex v,
+            std::vector<std::uint32_t>& fan,
+            std::vector<std::uint32_t>& label) const;
+  std::size_t
+  countFans(SampleIndex v) const;
+  std::size_t
+  prune(std::uint32_t group);
+  bool
+  mustPrune(std::uint32_t t);
+  void
+  walkAll();
+  struct Step
+  {
+    enum Outcome
+    {
+      done,    // the edge is closed, or no candidate is left on it
+      added,   // triangle was added
+      refused, // triangle would break an edge
+      pinch    // triangle would give a vertex a second fan
+    } outcome;
+    std::uint32_t triangle;
+  };
+  Step
+  step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch);
+  std::size_t
+  walk(std::vector<std::pair<std::uint32_t, int>>& frontier,
+       std::uint32_t group,
+       std::vector<std::uint32_t>& added);
+  void
+  resolvePinches();
+  bool
+  seedTriangle(std::uint32_t& seed);
+  void
+  stitch();
+  std::vector<std::vector<SampleIndex>>
+  traceLoops() const;
+  void
+  orientClosedComponentsOutward();
+
+  const VoronoiCocone& voronoi_;
+  const std::vector<Vector>& points_;
+  const ReconstructionParameters& parameters_;
+  ReconstructionReport& report_;
+  const std::size_t n_;
+
+  std::vector<TriangleIndices> pool_;
+  std::vector<std::uint8_t> state_;
+  std::vector<std::uint32_t> group_;
+  std::vector<TriangleIndices> oriented_; // orientation in the mesh
+  std::vector<std::uint32_t> offsets_, ids_;
+  std::vector<std::uint32_t> mesh_degree_; // mesh triangles at each sample
+  std::vector<double> spacing_;            // local sample spacing
+  std::vector<SampleIndex> seed_order_;    // samples by decreasing x
+  std::size_t seed_cursor_ = 0;
+
+  // Scratch, reused to keep loops free of allocations.
+  mutable std::vector<std::uint32_t> scratch_, on_edge_, around_;
+  std::vector<double> angles_;
+};
+
+void
+Mesher::rebuildIncidence()
+{
+  offsets_.assign(n_ + 1, 0);
+  for (const TriangleIndices& t : pool_)
+    for (const SampleIndex v : t)
+      ++offsets_[v + 1];
+  for (std::size_t i = 0; i < n_; ++i)
+    offsets_[i + 1] += offsets_[i];
+  ids_.resize(offsets_[n_]);
+  std::vector<std::uint32_t> fill(offsets_.begin(), offsets_.end() - 1);
+  for (std::uint32_t t = 0; t < pool_.size(); ++t)
+    for (const SampleIndex v : pool_[t])
+      ids_[fill[v]++] = t;
+}
+
+// ---------------------------------------------------------------------------------
+// Local spacing: the distance from a sample to its third nearest neighbour among the
+// samples it shares a marked triangle with. On an evenly spread sample it is about
+// 1.1 sqrt(area / n); unlike the cocone radius it does not grow at the rim of a hole.
+void
+Mesher::measureSpacing()
+{
+  const std::vector<MarkedTriangle>& marked = voronoi_.markedTriangles();
+  spacing_.assign(n_, 0);
+  std::vector<double> distances;
+  for (SampleIndex p = 0; p < n_; ++p) {
+    distances.clear();
+    for (const std::uint32_t t : voronoi_.trianglesAround(p))
+      for (const SampleIndex v : marked[t].vertex)
+        if (v != p)
+          distances.push_back((points_[v] - points_[p]).squaredNorm());
+    std::sort(distances.begin(), distances.end());
+    distances.erase(std::unique(distances.begin(), distances.end()), distances.end());
+    if (!distances.empty())
+      spacing_[p] = std::sqrt(distances[std::min<std::size_t>(distances.size(), 3) - 1]);
+  }
+}
+
+double
+Mesher::typicalSpacing(const std::vector<SampleIndex>& samples) const
+{
+  std::vector<double> values;
+  values.reserve(samples.size());
+  for (const SampleIndex v : samples)
+    if (spacing_[v] > 0)
+      values.push_back(spacing_[v]);
+  if (values.empty())
+    return 0;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+// The size of a hole or of a patch: twice its area over its perimeter, which is the
+// radius for a disc and half the width for a long strip. A hole is a true boundary
+// when this radius exceeds true_boundary_ratio local spacings (paper 3.4.2 compares the
+// circumradii of the triangles that would fill it with those of its neighbours, but on
+// scans the fills of true holes are fans of long, thin triangles whose circumradii are
+// no larger than those of many fills of small gaps; this measure separates them).
+bool
+Mesher::isTrueBoundary(double area, double perimeter, double spacing) const
+{
+  return perimeter > 0 && 2 * area / perimeter > parameters_.true_boundary_ratio * spacing;
+}
+
+// ---------------------------------------------------------------------------------
+// Candidates: boundary samples cast no vote. The original COCONE keeps a triangle
+// marked by all three vertices, which caps open surfaces with a lid or, after pruning,
+// lets them be eaten away; a union over the samples' marks (a literal reading of the
+// paper's pseudo-code) adds many non-manifold edges. So a triangle is a candidate when
+// every non-boundary vertex marks it, and it has one.
+void
+Mesher::collectCandidates()
+{
+  const std::vector<std::uint8_t>& boundary = report_.boundary_samples;
+  for (const MarkedTriangle& t : voronoi_.markedTriangles()) {
+    int voters = 0;
+    bool every_voter_marks = true;
+    for (int k = 0; k < 3; ++k) {
+      if (boundary[t.vertex[k]])
+        continue;
+      ++voters;
+      every_voter_marks = every_voter_marks && t.isMarkedBy(k);
+    }
+    if (voters > 0 && every_voter_marks)
+      addToPool(t.vertex, kCoconeGroup);
+  }
+  report_.candidate_triangles = pool_.size();
+  rebuildIncidence();
+}
+
+// Lids. A hole that is small against the local feature size leaves most samples on its
+// rim flat (BOUNDARY flags only a few of them), and their cocones choose Delaunay
+// triangles across it: the candidates cover the hole with a lid of triangles larger
+// than those of a sampled surface (whose circumradius stays below about 0.9 local
+// spacings). Oversized candidates are grouped into patches (connected through edges);
+// a patch as large as a true boundary (isTrueBoundary) that touches a boundary sample
+// or its neighbours is a lid and is removed, so the hole stays open. Large patches far
+// from any boundary sample are sparsely sampled flat regions (as in meshes decimated
+// adaptively) and stay. Measured on the Stanford bunny: without this step two of the
+// five holes of its base stay open, with it all five, and no other loop.
+void
+Mesher::removeLids()
+{
+  constexpr double kOversized = 1.25; // circumradius in local spacings
+  std::vector<std::uint8_t> oversized(pool_.size(), 0);
+  for (std::uint32_t t = 0; t < pool_.size(); ++t) {
+    const TriangleIndices& tri = pool_[t];
+    const double local = std::max({spacing_[tri[0]], spacing_[tri[1]], spacing_[tri[2]]});
+    oversized[t] =
+        circumradius(points_[tri[0]], points_[tri[1]], points_[tri[2]]) > kOversized * local;
+  }
+  // Boundary samples and the samples sharing a candidate with one.
+  const std::vector<std::uint8_t>& boundary = report_.boundary_samples;
+  std::vector<std::uint8_t> near_boundary(boundary);
+  for (const TriangleIndices& tri : pool_)
+    if (boundary[tri[0]] || boundary[tri[1]] || boundary[tri[2]])
+      for (const SampleIndex v : tri)
+        near_boundary[v] = 1;
+  std::vector<std::uint8_t> seen(pool_.size(), 0);
+  std::vector<std::uint32_t> patch, on_edge;
+  std::vector<SampleIndex> vertices;
+  for (std::uint32_t start = 0; start < pool_.size(); ++start) {
+    if (!oversized[start] || seen[start])
+      continue;
+    patch.assign(1, start);
+    seen[start] = 1;
+    double area = 0, perimeter = 0;
+    for (std::size_t head = 0; head < patch.size(); ++head) {
+      const TriangleIndices& tri = pool_[patch[head]];
+      area += 0.5 * (points_[tri[1]] - points_[tri[0]])
+                        .cross(points_[tri[2]] - points_[tri[0]])
+                        .norm();
+      for (int k = 0; k < 3; ++k) {
+        const SampleIndex a = tri[k], b = tri[(k + 1) % 3];
+        trianglesOnEdge(a, b, [&](std::uint32_t s) { return oversized[s] != 0; }, on_edge);
+        if (on_edge.size() == 1)
+          perimeter += (points_[a] - points_[b]).norm();
+        for (const std::uint32_t s : on_edge)
+          if (!seen[s]) {
+            seen[s] = 1;
+            patch.push_back(s);
+          }
+      }
+    }
+    vertices.clear();
+    for (const std::uint32_t t : patch)
+      vertices.insert(vertices.end(), pool_[t].begin(), pool_[t].end());
+    if (!isTrueBoundary(area, perimeter, typicalSpacing(vertices)))
+      continue;
+    if (std::none_of(vertices.begin(), vertices.end(),
+                     [&](SampleIndex v) { return near_boundary[v] != 0; }))
+      continue; // a sparsely sampled flat region, not a hole
+    for (const std::uint32_t t : patch)
+      state_[t] = kRejected;
+    report_.lid_triangles += patch.size();
+  }
+}
+
+// ---------------------------------------------------------------------------------
+// Pruning. An edge is sharp when, ordering its triangles by angle around it, two
+// consecutive ones are more than 3 pi / 2 apart: a fold (the triangles bend back onto
+// each other) or a bare edge (one triangle). Triangles at folds go. A triangle at a bare
+// edge goes too unless a flat sheet holds it: one of its other edges has exactly two
+// triangles meeting without a fold. That exception is what keeps a small gap (a
+// Delaunay triangle that only two of its three vertices marked, far from any boundary
+// sample) from letting pruning cascade through a whole surface (measured on the
+// Stanford bunny with the plain rule), while fins hanging off an edge shared by three
+// or more triangles still go; the gaps are closed by stitching. Triangles incident to a
+// boundary sample are never pruned, as in the paper.
+bool
+Mesher::mustPrune(std::uint32_t t)
+{
+  const TriangleIndices& tri = pool_[t];
+  const std::uint32_t group = group_[t];
+  bool bare = false, held = false;
+  for (int k = 0; k < 3; ++k) {
+    const SampleIndex a = tri[k], b = tri[(k + 1) % 3];
+    trianglesOnEdge(
+        a, b,
+        [&](std::uint32_t s) {
+          return state_[s] == kInMesh || (state_[s] == kCandidate && group_[s] == group);
+        },
+        scratch_);
+    if (scratch_.size() == 1) {
+      bare = true;
+      continue;
+    }
+    // Angles around the edge, from the first triangle's half-plane.
+    const Vector pa = points_[a];
+    const Vector axis = (points_[b] - pa).normalized();
+    Vector reference = Vector::Zero(), normal = Vector::Zero();
+    angles_.clear();
+    for (const std::uint32_t s : scratch_) {
+      Vector u = points_[apex(s, a, b)] - pa;
+      u -= u.dot(axis) * axis;
+      if (angles_.empty()) {
+        reference = u.normalized();
+        normal = axis.cross(reference);
+        angles_.push_back(0);
+        continue;
+      }
+      double angle = std::atan2(u.dot(normal), u.dot(reference));
+      if (angle < 0)
+        angle += 2 * M_PI;
+      angles_.push_back(angle);
+    }
+    std::sort(angles_.begin(), angles_.end());
+    double widest = 2 * M_PI - angles_.back() + angles_.front();
+    for (std::size_t i = 1; i < angles_.size(); ++i)
+      widest = std::max(widest, angles_[i] - angles_[i - 1]);
+    if (widest > 1.5 * M_PI)
+      return true; // a fold
+    if (scratch_.size() == 2)
+      held = true;
+  }
+  return bare && !held;
+}
+
+std::size_t
+Mesher::prune(std::uint32_t group)
+{
+  const std::vector<std::uint8_t>& boundary = report_.boundary_samples;
+  std::vector<std::uint32_t> work;
+  std::vector<std::uint8_t> queued(pool_.size(), 0);
+  for (std::uint32_t t = 0; t < pool_.size(); ++t)
+    if (state_[t] == kCandidate && group_[t] == group) {
+      work.push_back(t);
+      queued[t] = 1;
+    }
+  std::size_t pruned = 0;
+  std::vector<std::uint32_t> neighbours;
+  while (!work.empty()) {
+    const std::uint32_t t = work.back();
+    work.pop_back();
+    queued[t] = 0;
+    if (state_[t] != kCandidate)
+      continue;
+    const TriangleIndices& tri = pool_[t];
+    if (group == kCoconeGroup &&
+        (boundary[tri[0]] || boundary[tri[1]] || boundary[tri[2]]))
+      continue; // protected
+    if (!mustPrune(t))
+      continue;
+    state_[t] = kRejected;
+    ++pruned;
+    for (int k = 0; k < 3; ++k) {
+      trianglesOnEdge(
+          tri[k], tri[(k + 1) % 3],
+          [&](std::uint32_t s) { return state_[s] == kCandidate && group_[s] == group; },
+          neighbours);
+      for (const std::uint32_t s : neighbours)
+        if (!queued[s]) {
+          queued[s] = 1;
+          work.push_back(s);
+        }
+    }
+  }
+  return pruned;
+}
+
+// ---------------------------------------------------------------------------------
+// The walk. From a triangle t across its edge a -> b, take the candidate that comes
+// first when rotating from t towards the side its normal points to: the outermost
+// sheet, so a closed surface is extracted from the outside in. Orient it so that it
+// traverses b -> a. Refuse it (the edge stays open, for stitching) if it would put a
+// third triangle on an edge, traverse an edge in the direction its mesh triangle does,
+// or give its apex a second fan.
+Mesher::Step
+Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
+{
+  if (state_[t] != kInMesh)
+    return {Step::done, 0};
+  const TriangleIndices& o = oriented_[t];
+  const SampleIndex a = o[slot], b = o[(slot + 1) % 3], c = o[(slot + 2) % 3];
+  meshOnEdge(a, b, on_edge_);
+  if (on_edge_.size() != 1)
+    return {Step::done, 0}; // closed already
+
+  // Candidates around the edge, by rotation angle from t towards its normal.
+  trianglesOnEdge(
+      a, b, [&](std::uint32_t s) { return state_[s] == kCandidate && group_[s] == group; },
+      around_);
+  if (around_.empty())
+    return {Step::done, 0};
+  const Vector pa = points_[a];
+  const Vector axis = (points_[b] - pa).normalized();
+  Vector reference = points_[c] - pa;
+  reference = (reference - reference.dot(axis) * axis).normalized();
+  const Vector up = orientedNormal(o).normalized();
+  std::uint32_t best = 0;
+  double best_angle = std::numeric_limits<double>::infinity();
+  for (const std::uint32_t s : around_) {
+    Vector u = points_[apex(s, a, b)] - pa;
+    u -= u.dot(axis) * axis;
+    double angle = std::atan2(u.dot(up), u.dot(reference));
+    if (angle <= 0)
+      angle += 2 * M_PI;
+    if (angle < best_angle) {
+      best_angle = angle;
+      best = s;
+    }
+  }
+  const SampleIndex x = apex(best, a, b);
+
+  // Guards: at most two triangles per edge, traversing it in opposite directions.
+  bool x_attached = mesh_degree_[x] == 0;
+  const std::array<std::pair<SampleIndex, SampleIndex>, 2> new_edges = {{{a, x}, {x, b}}};
+  for (const auto& [from, to] : new_edges) {
+    meshOnEdge(from, to, on_edge_);
+    if (on_edge_.size() >= 2 || (on_edge_.size() == 1 && traverses(on_edge_[0], from, to)))
+      return {Step::refused, best};
+    if (on_edge_.size() == 1)
+      x_attached = true; // x's fan continues through this boundary edge
+  }
+  if (!x_attached && !allow_pinch)
+    return {Step::pinch, best}; // x has a fan elsewhere: this would pinch it, for now
+
+  state_[best] = kInMesh;
+  oriented_[best] = {b, a, x};
+  for (const SampleIndex v : oriented_[best])
+    ++mesh_degree_[v];
+  return {Step::added, best};
+}
+
+std::size_t
+Mesher::walk(std::vector<std::pair<std::uint32_t, int>>& frontier,
+             std::uint32_t group,
+             std::vector<std::uint32_t>& added)
+{
+  // Breadth first: the surface grows as a disc around the seed, so its front meets
+  // itself only where the surface closes up. Where two parts of the front approach
+  // each other, the first triangle joining them pinches a vertex for a moment; such
+  // steps wait until nothing else can be done, then go one at a time (the front then
+  // zips the seam and the pinch disappears; resolvePinches() removes what remains).
+  std::size_t count = 0;
+  std::vector<std::pair<std::uint32_t, int>> deferred;
+  const auto push_edges = [&](std::uint32_t t) {
+    added.push_back(t);
+    ++count;
+    frontier.emplace_back(t, 1); // a -> x
+    frontier.emplace_back(t, 2); // x -> b
+  };
+  while (true) {
+    const std::size_t count_before = count;
+    for (std::size_t head = 0; head < frontier.size(); ++head) {
+      const auto [t, slot] = frontier[head];
+      const Step result = step(t, slot, group, false);
+      if (result.outcome == Step::added)
+        push_edges(result.triangle);
+      else if (result.outcome == Step::pinch)
+        deferred.emplace_back(t, slot);
+    }
+    frontier.clear();
+    if (deferred.empty())
+      break;
+    if (count != count_before) {
+      frontier.swap(deferred);
+      continue;
+    }
+    bool forced = false;
+    std::size_t k = 0;
+    for (; k < deferred.size() && !forced; ++k) {
+      const Step result = step(deferred[k].first, deferred[k].second, group, true);
+      if (result.outcome == Step::added) {
+        push_edges(result.triangle);
+        forced = true;
+      }
+    }
+    if (!forced)
+      break;
+    frontier.insert(frontier.end(), deferred.begin() + static_cast<std::ptrdiff_t>(k),
+                    deferred.end());
+    deferred.clear();
+  }
+  return count;
+}
+
+// A vertex whose mesh triangles form several fans (connected through edges at the
+// vertex) keeps its largest fan; the other triangles go, and their vertices are checked
+// again. The holes this leaves are stitched like any other.
+void
+Mesher::resolvePinches()
+{
+  std::vector<SampleIndex> work;
+  std::vector<std::uint8_t> queued(n_, 0);
+  for (SampleIndex v = 0; v < n_; ++v)
+    if (mesh_degree_[v] > 0) {
+      work.push_back(v);
+      queued[v] = 1;
+    }
+  std::vector<std::uint32_t> fan, label;
+  std::vector<std::size_t> size;
+  while (!work.empty()) {
+    const SampleIndex v = work.back();
+    work.pop_back();
+    queued[v] = 0;
+    if (labelFans(v, fan, label) <= 1)
+      continue;
+    size.assign(fan.size(), 0);
+    for (const std::uint32_t root : label)
+      ++size[root];
+    const std::size_t keep =
+        static_cast<std::size_t>(std::max_element(size.begin(), size.end()) - size.begin());
+    for (std::size_t i = 0; i < fan.size(); ++i) {
+      if (label[i] == keep)
+        continue;
+      state_[fan[i]] = kRejected;
+      ++report_.pinch_removed_triangles;
+      for (const SampleIndex w : oriented_[fan[i]]) {
+        --mesh_degree_[w];
+        if (w != v && !queued[w]) {
+          queued[w] = 1;
+          work.push_back(w);
+        }
+      }
+    }
+  }
+}
+
+// A seed on the outside of what is left: at the remaining sample of largest x, the
+// triangle with all vertices unused that has the fewest pool neighbours of that sample
+// on its outer side, oriented towards +x.
+bool
+Mesher::seedTriangle(std::uint32_t& seed)
+{
+  // Samples by decreasing x; one that has no free triangle never gets one again (the
+  // mesh only grows), so a single cursor serves every seed.
+  if (seed_order_.empty()) {
+    seed_order_.resize(n_);
+    std::iota(seed_order_.begin(), seed_order_.end(), 0u);
+    std::sort(seed_order_.begin(), seed_order_.end(), [&](SampleIndex u, SampleIndex v) {
+      return points_[u].x() > points_[v].x() || (points_[u].x() == points_[v].x() && u < v);
+    });
+  }
+  const auto is_free = [&](std::uint32_t t) {
+    const TriangleIndices& tri = pool_[t];
+    return state_[t] == kCandidate && group_[t] == kCoconeGroup &&
+           mesh_degree_[tri[0]] == 0 && mesh_degree_[tri[1]] == 0 &&
+           mesh_degree_[tri[2]] == 0;
+  };
+  SampleIndex extreme = kNoSample;
+  for (; seed_cursor_ < seed_order_.size(); ++seed_cursor_) {
+    const SampleIndex v = seed_order_[seed_cursor_];
+    bool has_free = false;
+    for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1] && !has_free; ++k)
+      has_free = is_free(ids_[k]);
+    if (has_free) {
+      extreme = v;
+      break;
+    }
+  }
+  if (extreme == kNoSample)
+    return false;
+  const Vector p = points_[extreme];
+  std::size_t best_violations = std::numeric_limits<std::size_t>::max();
+  double best_alignment = -1;
+  bool found = false;
+  for (std::uint32_t k = offsets_[extreme]; k < offsets_[extreme + 1]; ++k) {
+    const std::uint32_t t = ids_[k];
+    const TriangleIndices& tri = pool_[t];
+    if (!is_free(t))
+      continue;
+    Vector normal = orientedNormal(tri);
+    if (!(normal.norm() > 0))
+      continue;
+    normal.normalize();
+    if (normal.x() < 0)
+      normal = -normal;
+    std::size_t violations = 0;
+    for (std::uint32_t m = offsets_[extreme]; m < offsets_[extreme + 1]; ++m) {
+      const std::uint32_t s = ids_[m];
+      if (s == t || state_[s] != kCandidate || group_[s] != kCoconeGroup)
+        continue;
+      for (const SampleIndex v : pool_[s])
+        if (normal.dot(points_[v] - p) > 1e-12 * (points_[v] - p).norm())
+          ++violations;
+    }
+    if (violations < best_violations ||
+        (violations == best_violations && normal.x() > best_alignment)) {
+      best_violations = violations;
+      best_alignment = normal.x();
+      seed = t;
+      found = true;
+    }
+  }
+  if (!found)
+    return false;
+  TriangleIndices o = pool_[seed];
+  if (orientedNormal(o).x() < 0)
+    std::swap(o[1], o[2]);
+  oriented_[seed] = o;
+  return true;
+}
+
+void
+Mesher::walkAll()
+{
+  std::vector<std::pair<std::uint32_t, int>> frontier;
+  std::vector<std::uint32_t> added;
+  std::uint32_t seed = 0;
+  while (seedTriangle(seed)) {
+    state_[seed] = kInMesh;
+    for (const SampleIndex v : oriented_[seed])
+      ++mesh_degree_[v];
+    report_.walked_triangles += 1;
+    frontier = {{seed, 0}, {seed, 1}, {seed, 2}};
+    report_.walked_triangles += walk(frontier, kCoconeGroup, added);
+  }
+}
+
+// ---------------------------------------------------------------------------------
+std::vector<std::vector<SampleIndex>>
+Mesher::traceLoops() const
+{
+  // Boundary edges a -> b, as the single mesh triangle on them traverses them.
+  std::vector<std::pair<SampleIndex, SampleIndex>> edges;
+  std::vector<std::uint32_t> on_edge;
+  for (std::uint32_t t = 0; t < pool_.size(); ++t) {
+    if (state_[t] != kInMesh)
+      continue;
+    const TriangleIndices& o = oriented_[t];
+    for (int k = 0; k < 3; ++k) {
+      meshOnEdge(o[k], o[(k + 1) % 3], on_edge);
+      if (on_edge.size() == 1)
+        edges.emplace_back(o[k], o[(k + 1) % 3]);
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  std::vector<std::uint8_t> used(edges.size(), 0);
+  std::vector<std::vector<SampleIndex>> loops;
+  for (std::size_t start = 0; start < edges.size(); ++start) {
+    if (used[start])
+      continue;
+    std::vector<SampleIndex> loop;
+    std::size_t e = start;
+    while (!used[e]) {
+      used[e] = 1;
+      loop.push_back(edges[e].first);
+      // The edge leaving edges[e].second (one per vertex on a manifold boundary).
+      const auto next = std::lower_bound(
+          edges.begin(), edges.end(),
+          std::make_pair(edges[e].second, static_cast<SampleIndex>(0)));
+      if (next == edges.end() || next->first != edges[e].second)
+        break;
+      e = static_cast<std::size_t>(next - edges.begin());
+    }
+    loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+// Stitching (paper 3.4.2): for each hole, the Delaunay triangles with all vertices on
+// the hole (and on unused samples inside it) are offered to the same prune and walk,
+// starting from the hole's edges. When they do not close it, a small hole (a handful of
+// vertices whose triangle is not Delaunay: a sample on the other side of a thin part
+// lies in its circumsphere) is closed by the triangulation of its loop of least area.
+// The hole stays open, and everything is undone, when it is a true boundary
+// (isTrueBoundary) or when closing it would break the manifold.
+void
+Mesher::stitch()
+{
+  const std::vector<std::vector<SampleIndex>> loops = traceLoops();
+  if (loops.empty())
+    return;
+
+  // Offer every hole its Delaunay triangles, in a group of its own.
+  std::vector<SampleIndex> neighbours;
+  std::vector<std::array<SampleIndex, 3>> delaunay;
+  std::vector<std::vector<SampleIndex>> members(loops.size());
+  for (std::size_t h = 0; h < loops.size(); ++h) {
+    std::vector<SampleIndex>& vertices = members[h];
+    vertices = loops[h];
+    // Unused samples next to two or more hole vertices lie in the hole.
+    std::vector<SampleIndex> inner;
+    for (const SampleIndex v : loops[h]) {
+      voronoi_.delaunayNeighbours(v, neighbours);
+      for (const SampleIndex w : neighbours)
+        if (mesh_degree_[w] == 0)
+          inner.push_back(w);
+    }
+    std::sort(inner.begin(), inner.end());
+    for (std::size_t i = 0; i < inner.size();) {
+      std::size_t j = i;
+      while (j < inner.size() && inner[j] == inner[i])
+        ++j;
+      if (j - i >= 2)
+        vertices.push_back(inner[i]);
+      i = j;
+    }
+    voronoi_.delaunayTrianglesAmong(vertices, delaunay);
+    for (const auto& t : delaunay)
+      addToPool({t[0], t[1], t[2]}, static_cast<std::uint32_t>(h + 1));
+  }
+  rebuildIncidence();
+  // A hole triangle that is a mesh triangle already is of no use.
+  std::vector<std::uint32_t> same;
+  for (std::uint32_t t = 0; t < pool_.size(); ++t) {
+    if (group_[t] == kCoconeGroup || state_[t] != kCandidate)
+      continue;
+    const TriangleIndices& tri = pool_[t];
+    trianglesOnEdge(
+        tri[0], tri[1],
+        [&](std::uint32_t u) { return state_[u] == kInMesh && contains(u, tri[2]); }, same);
+    if (!same.empty())
+      state_[t] = kRejected;
+  }
+
+  std::vector<std::pair<std::uint32_t, int>> frontier;
+  std::vector<std::uint32_t> added, on_edge;
+  std::vector<TriangleIndices> fill;
+  for (std::size_t h = 0; h < loops.size(); ++h) {
+    const std::uint32_t group = static_cast<std::uint32_t>(h + 1);
+    const std::vector<SampleIndex>& loop = loops[h];
+    double perimeter = 0;
+    frontier.clear();
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const SampleIndex a = loop[k], b = loop[(k + 1) % loop.size()];
+      perimeter += (points_[a] - points_[b]).norm();
+      meshOnEdge(a, b, on_edge);
+      if (on_edge.size() != 1)
+        continue;
+      const TriangleIndices& o = oriented_[on_edge[0]];
+      for (int slot = 0; slot < 3; ++slot)
+        if (o[slot] == a && o[(slot + 1) % 3] == b)
+          frontier.emplace_back(on_edge[0], slot);
+    }
+    if (frontier.size() != loop.size())
+      continue;
+    const double spacing = typicalSpacing(members[h]);
+
+    prune(group);
+    added.clear();
+    walk(frontier, group, added);
+    if (!added.empty() && closes(loop, added) &&
+        !isTrueBoundary(area(added), perimeter, spacing)) {
+      ++report_.stitched_holes;
+      report_.stitched_triangles += added.size();
+      continue;
+    }
+    undo(added);
+
+    if (loop.size() > kLargestPolygonFill || !fillByDynamicProgramming(loop, fill))
+      continue;
+    double fill_area = 0;
+    for (const TriangleIndices& t : fill)
+      fill_area += 0.5 * orientedNormal(t).norm();
+    if (isTrueBoundary(fill_area, perimeter, spacing))
+      continue;
+    added.clear();
+    for (const TriangleIndices& t : fill) {
+      addToPool(t, kPolygonGroup);
+      const std::uint32_t id = static_cast<std::uint32_t>(pool_.size() - 1);
+      state_[id] = kInMesh;
+      for (const SampleIndex v : t)
+        ++mesh_degree_[v];
+      added.push_back(id);
+    }
+    rebuildIncidence();
+    if (closes(loop, added)) {
+      ++report_.stitched_holes;
+      report_.stitched_triangles += added.size();
+    }
+    else {
+      undo(added);
+    }
+  }
+}
+
+double
+Mesher::area(const std::vector<std::uint32_t>& triangles) const
+{
+  double total = 0;
+  for (const std::uint32_t t : triangles)
+    total += 0.5 * orientedNormal(oriented_[t]).norm();
+  return total;
+}
+
+// True when, with \a added in the mesh, every edge of the loop and of the added
+// triangles has two triangles and every vertex involved a single fan.
+bool
+Mesher::closes(const std::vector<SampleIndex>& loop, const std::vector<std::uint32_t>& added)
+{
+  std::vector<std::uint32_t> on_edge;
+  for (std::size_t k = 0; k < loop.size(); ++k) {
+    meshOnEdge(loop[k], loop[(k + 1) % loop.size()], on_edge);
+    if (on_edge.size() != 2)
+      return false;
+  }
+  for (const std::uint32_t t : added) {
+    const TriangleIndices& o = oriented_[t];
+    for (int k = 0; k < 3; ++k) {
+      meshOnEdge(o[k], o[(k + 1) % 3], on_edge);
+      if (on_edge.size() != 2 || traverses(on_edge[0], o[k], o[(k + 1) % 3]) ==
+                                     traverses(on_edge[1], o[k], o[(k + 1) % 3]))
+        return false;
+      if (countFans(o[k]) != 1)
+        return false;
+    }
+  }
+  return true;
+}
+
+void
+Mesher::undo(const std::vector<std::uint32_t>& added)
+{
+  for (const std::uint32_t t : added) {
+    state_[t] = kRejected;
+    for (const SampleIndex v : oriented_[t])
+      --mesh_degree_[v];
+  }
+}
+
+// The triangulation of the loop polygon of least total area (dynamic programming over
+// the polygon's diagonals, O(m^3)), using no diagonal that is an edge of the mesh
+// already. Triangles are oriented to continue the surface across the loop's edges.
+bool
+Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
+                                 std::vector<TriangleIndices>& fill)
+{
+  fill.clear();
+  const std::size_t m = loop.size();
+  if (m < 3)
+    return false;
+  std::vector<std::uint32_t> on_edge;
+  const auto usable = [&](std::size_t i, std::size_t k) {
+    if (k == i + 1 || (i == 0 && k == m - 1))
+      return true; // an edge of the loop
+    meshOnEdge(loop[i], loop[k], on_edge);
+    return on_edge.empty();
+  };
+  const double infinity = std::numeric_limits<double>::infinity();
+  std::vector<double> cost(m * m, infinity);
+  std::vector<std::uint32_t> split(m * m, 0);
+  for (std::size_t i = 0; i + 1 < m; ++i)
+    cost[i * m + i + 1] = 0;
+  for (std::size_t span = 2; span < m; ++span)
+    for (std::size_t i = 0; i + span < m; ++i) {
+      const std::size_t k = i + span;
+      if (!usable(i, k))
+        continue;
+      for (std::size_t j = i + 1; j < k; ++j) {
+        const double sub = cost[i * m + j] + cost[j * m + k];
+        if (!(sub < infinity))
+          continue;
+        const double total =
+            sub + 0.5 * orientedNormal({loop[i], loop[j], loop[k]}).norm();
+        if (total < cost[i * m + k]) {
+          cost[i * m + k] = total;
+          split[i * m + k] = static_cast<std::uint32_t>(j);
+        }
+      }
+    }
+  if (!(cost[m - 1] < infinity))
+    return false;
+  std::vector<std::pair<std::size_t, std::size_t>> stack = {{0, m - 1}};
+  while (!stack.empty()) {
+    const auto [i, k] = stack.back();
+    stack.pop_back();
+    if (k < i + 2)
+      continue;
+    const std::size_t j = split[i * m + k];
+    // The loop runs a -> b as its mesh triangles traverse it; the fill runs b -> a.
+    fill.push_back({loop[j], loop[i], loop[k]});
+    stack.emplace_back(i, j);
+    stack.emplace_back(j, k);
+  }
+  return true;
+}
+
+std::size_t
+Mesher::labelFans(SampleIndex v,
+                  std::vector<std::uint32_t>& fan,
+                  std::vector<std::uint32_t>& label) const
+{
+  fan.clear();
+  for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1]; ++k)
+    if (state_[ids_[k]] == kInMesh)
+      fan.push_back(ids_[k]);
+  // Union-find: triangles sharing an edge (v, w) belong to the same fan.
+  label.resize(fan.size());
+  std::iota(label.begin(), label.end(), 0u);
+  const auto find = [&](std::uint32_t i) {
+    while (label[i] != i)
+      i = label[i] = label[label[i]];
+    return i;
+  };
+  for (std::size_t i = 0; i < fan.size(); ++i)
+    for (std::size_t j = i + 1; j < fan.size(); ++j)
+      for (const SampleIndex w : pool_[fan[i]])
+        if (w != v && contains(fan[j], w))
+          label[find(static_cast<std::uint32_t>(i))] = find(static_cast<std::uint32_t>(j));
+  std::size_t fans = 0;
+  for (std::size_t i = 0; i < fan.size(); ++i) {
+    label[i] = find(static_cast<std::uint32_t>(i));
+    fans += label[i] == i;
+  }
+  return fans;
+}
+
+std::size_t
+Mesher::countFans(SampleIndex v) const
+{
+  std::vector<std::uint32_t> fan, label;
+  return labelFans(v, fan, label);
+}
+
+// Closed components face outward: flip any whose signed volume is negative.
+void
+Mesher::orientClosedComponentsOutward()
+{
+  std::vector<std::uint32_t> mesh;
+  for (std::uint32_t t = 0; t < pool_.size(); ++t)
+    if (state_[t] == kInMesh)
+      mesh.push_back(t);
+  std::vector<std::int32_t> component(pool_.size(), -1);
+  std::vector<std::uint32_t> stack, on_edge;
+  for (const std::uint32_t start : mesh) {
+    if (component[start] >= 0)
+      continue;
+    std::vector<std::uint32_t> members;
+    bool closed = true;
+    double volume = 0;
+    stack = {start};
+    component[start] = 1;
+    while (!stack.empty()) {
+      const std::uint32_t t = stack.back();
+      stack.pop_back();
+      members.push_back(t);
+      const TriangleIndices& o = oriented_[t];
+      volume += points_[o[0]].dot(points_[o[1]].cross(points_[o[2]]));
+      for (int k = 0; k < 3; ++k) {
+        meshOnEdge(o[k], o[(k + 1) % 3], on_edge);
+        if (on_edge.size() != 2)
+          closed = false;
+        for (const std::uint32_t s : on_edge)
+          if (component[s] < 0) {
+            component[s] = 1;
+            stack.push_back(s);
+          }
+      }
+    }
+    if (closed && volume < 0)
+      for (const std::uint32_t t : members)
+        std::swap(oriented_[t][1], oriented_[t][2]);
+  }
+}
+
+void
+Mesher::run(std::vector<TriangleIndices>& output)
+{
+  report_ = ReconstructionReport();
+  if (parameters_.detect_boundary)
+    detectBoundarySamples(voronoi_, parameters_.boundary, report_.boundary_samples);
+  else
+    report_.boundary_samples.assign(n_, 0);
+  mesh_degree_.assign(n_, 0);
+
+  measureSpacing();
+  collectCandidates();
+  removeLids();
+  report_.pruned_triangles = prune(kCoconeGroup);
+  walkAll();
+  resolvePinches();
+  if (parameters_.stitch_holes)
+    stitch();
+  orientClosedComponentsOutward();
+
+  output.clear();
+  for (std::uint32_t t = 0; t < pool_.size(); ++t)
+    if (state_[t] == kInMesh)
+      output.push_back(oriented_[t]);
+  report_.open_loops = traceLoops();
+  for (SampleIndex v = 0; v < n_; ++v)
+    if (mesh_degree_[v] == 0)
+      report_.unused_samples.push_back(v);
+}
+
+} // namespace
+
+Status
+reconstructSurface(const VoronoiCocone& voronoi,
+                   const ReconstructionParameters& parameters,
+                   std::vector<TriangleIndices>& triangles,
+                   ReconstructionReport& report)
+{
+  triangles.clear();
+  report = ReconstructionReport();
+  if (voronoi.status() != Status::ok)
+    return Status::not_computed;
+  Mesher mesher(voronoi, parameters, report);
+  mesher.run(triangles);
+  return Status::ok;
+}
+
+} // namespace cocone
+} // namespace pcl
