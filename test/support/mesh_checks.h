@@ -16,13 +16,17 @@ namespace cocone {
 namespace test {
 
 /** Number of pairs of triangles that intersect other than along a shared edge or at a
- * shared vertex (CGAL Polygon Mesh Processing). 0 for a mesh without self-intersection.
- * Works on any triangle soup; vertex indices index \a points. */
+ * shared vertex (by index; touching counts). 0 for a mesh without self-intersection.
+ * Works on any triangle soup, non-manifold ones included (CGAL box intersection and
+ * exact predicates: CGAL 5.5's Polygon Mesh Processing has no soup version); vertex
+ * indices index \a points (std::out_of_range otherwise). Triangles with collinear
+ * corners are skipped: analyzeTriangleMesh reports the degenerate ones. */
 std::size_t
 countSelfIntersections(const std::vector<Eigen::Vector3d>& points,
                        const std::vector<TriangleIndices>& triangles);
 
-/** Distances from a set of query points to a triangle mesh (AABB tree). */
+/** Distances from a set of query points to a triangle mesh (AABB tree); +infinity
+ * when the mesh has no triangle with area, 0 when there are no queries. */
 struct DistanceStats
 {
   double max = 0;

@@ -73,8 +73,9 @@ sampleTorus(std::size_t n, std::uint32_t seed = 1);
 SampledShape
 sampleTrefoilKnot(std::size_t n, std::uint32_t seed = 1);
 
-/** A closed genus-3 surface: a rounded slab (about 3 x 1 x 0.5) with three round
- * through-holes in a row. */
+/** A closed genus-3 surface: a rounded slab (about 3.9 x 1.7 x 0.5: the points within
+ * 0.25 of a planar stadium) with three round through-holes in a row (radius 0.5 at the
+ * flat faces, 0.25 at the waist). Local feature size at least 0.25. */
 SampledShape
 sampleGenus3(std::size_t n, std::uint32_t seed = 1);
 
