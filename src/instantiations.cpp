@@ -3,6 +3,8 @@
 // PCL_NO_PRECOMPILE defined, the headers include their implementation instead, so
 // custom point types work too (without CGAL: the templates only call the core).
 #include <pcl/cocone/impl/boundary_sample_estimation.hpp>
+#include <pcl/cocone/impl/cocone_reconstruction.hpp>
+#include <pcl/cocone/impl/voronoi_decimation.hpp>
 #include <pcl/impl/instantiate.hpp>
 #include <pcl/point_types.h>
 
@@ -12,3 +14,5 @@
   (pcl::PointXYZLNormal)(pcl::PointWithViewpoint)
 
 PCL_INSTANTIATE_PRODUCT(BoundarySampleEstimation, (PCL_COCONE_XYZ_POINT_TYPES)((pcl::Boundary)))
+PCL_INSTANTIATE(CoconeReconstruction, PCL_COCONE_XYZ_POINT_TYPES)
+PCL_INSTANTIATE(VoronoiDecimation, PCL_COCONE_XYZ_POINT_TYPES)

@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <pcl/cocone/cloud_samples.h>
+#include <pcl/cocone/voronoi_cocone.h>
+#include <pcl/cocone/voronoi_decimation.h>
+#include <pcl/console/print.h>
+
+#include <algorithm>
+#include <limits>
+
+namespace pcl {
+
+template <typename PointT>
+void
+VoronoiDecimation<PointT>::setRatioBound(double rho)
+{
+  if (!(rho > 0 && rho <= 10)) {
+    PCL_ERROR("[pcl::%s::setRatioBound] rho = %g is outside (0, 10]; keeping %g.\n",
+              getClassName().c_str(), rho, ratio_bound_);
+    return;
+  }
+  ratio_bound_ = rho;
+}
+
+template <typename PointT>
+void
+VoronoiDecimation<PointT>::setCoconeAngle(double theta)
+{
+  if (!(theta > 0 && theta < M_PI / 2)) {
+    PCL_ERROR("[pcl::%s::setCoconeAngle] theta = %g rad is outside (0, pi/2); keeping "
+              "%g.\n",
+              getClassName().c_str(), theta, cocone_angle_);
+    return;
+  }
+  cocone_angle_ = theta;
+}
+
+template <typename PointT>
+bool
+VoronoiDecimation<PointT>::decimate(double rho)
+{
+  removal_levels_.assign(input_->size(), std::numeric_limits<double>::quiet_NaN());
+  std::vector<Eigen::Vector3d> samples;
+  pcl::Indices cloud_index;
+  cocone::gatherFiniteSamples(*input_, *indices_, samples, cloud_index);
+
+  cocone::VoronoiCocone voronoi;
+  voronoi.setCoconeAngle(cocone_angle_);
+  voronoi.setNumberOfThreads(threads_);
+  cocone::DecimationLevels levels;
+  if (voronoi.compute(samples) != cocone::Status::ok ||
+      voronoi.decimate(rho, levels) != cocone::Status::ok) {
+    PCL_ERROR("[pcl::%s::filter] %s.\n", getClassName().c_str(),
+              voronoi.errorMessage().c_str());
+    return false;
+  }
+  for (std::size_t s = 0; s < samples.size(); ++s)
+    removal_levels_[cloud_index[s]] = levels.level[s];
+  PCL_DEBUG("[pcl::%s::filter] %zu of %zu finite points removed up to rho = %g.\n",
+            getClassName().c_str(), levels.removals, samples.size(), rho);
+  return true;
+}
+
+template <typename PointT>
+void
+VoronoiDecimation<PointT>::applyFilter(Indices& indices)
+{
+  indices.clear();
+  removed_indices_->clear();
+  if (!decimate(ratio_bound_))
+    return;
+  for (const pcl::index_t i : *indices_) {
+    const double level = removal_levels_[i];
+    const bool finite = !std::isnan(level);
+    const bool kept = finite && level >= ratio_bound_;
+    // Non-finite points are never output, with or without setNegative.
+    if (finite && kept != negative_)
+      indices.push_back(i);
+    else if (extract_removed_indices_)
+      removed_indices_->push_back(i);
+  }
+}
+
+template <typename PointT>
+bool
+VoronoiDecimation<PointT>::computeLevelsOfDetail(const std::vector<double>& ratio_bounds,
+                                                 std::vector<pcl::Indices>& kept)
+{
+  kept.clear();
+  if (ratio_bounds.empty())
+    return true;
+  for (const double rho : ratio_bounds)
+    if (!(rho > 0 && rho <= 10)) {
+      PCL_ERROR("[pcl::%s::computeLevelsOfDetail] rho = %g is outside (0, 10].\n",
+                getClassName().c_str(), rho);
+      return false;
+    }
+  if (!this->initCompute())
+    return false;
+  const bool ok = decimate(*std::max_element(ratio_bounds.begin(), ratio_bounds.end()));
+  if (ok) {
+    kept.resize(ratio_bounds.size());
+    for (std::size_t k = 0; k < ratio_bounds.size(); ++k)
+      for (const pcl::index_t i : *indices_)
+        if (removal_levels_[i] >= ratio_bounds[k])
+          kept[k].push_back(i);
+  }
+  this->deinitCompute();
+  return ok;
+}
+
+} // namespace pcl
+
+#define PCL_INSTANTIATE_VoronoiDecimation(T)                                           \
+  template class PCL_COCONE_EXPORT pcl::VoronoiDecimation<T>;
