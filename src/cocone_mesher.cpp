@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -180,7 +181,7 @@ private:
   bool
   seedTriangle(std::uint32_t& seed);
   void
-  stitch();
+  stitch(std::vector<std::vector<SampleIndex>>& loops);
   std::vector<std::vector<SampleIndex>>
   traceLoops() const;
   void
@@ -200,6 +201,7 @@ private:
   std::vector<std::uint32_t> mesh_degree_; // mesh triangles at each sample
   std::vector<double> spacing_;            // local sample spacing
   std::vector<SampleIndex> seed_order_;    // samples by decreasing x
+  std::vector<SampleIndex> pinched_;       // apexes of forced steps
   std::size_t seed_cursor_ = 0;
 
   // Scratch, reused to keep loops free of allocations.
@@ -395,20 +397,26 @@ Mesher::mustPrune(std::uint32_t t)
       bare = true;
       continue;
     }
-    // Angles around the edge, from the first triangle's half-plane.
     const Vector pa = points_[a];
     const Vector axis = (points_[b] - pa).normalized();
-    Vector reference = Vector::Zero(), normal = Vector::Zero();
+    const auto across = [&](std::uint32_t s) {
+      Vector u = points_[apex(s, a, b)] - pa;
+      return Vector(u - u.dot(axis) * axis);
+    };
+    if (scratch_.size() == 2) {
+      // Two half-planes fold (the wider gap exceeds 3 pi / 2) when they are less than
+      // pi / 2 apart.
+      if (across(scratch_[0]).dot(across(scratch_[1])) > 0)
+        return true;
+      held = true;
+      continue;
+    }
+    // Angles around the edge, from the first triangle's half-plane.
+    const Vector reference = across(scratch_[0]).normalized();
+    const Vector normal = axis.cross(reference);
     angles_.clear();
     for (const std::uint32_t s : scratch_) {
-      Vector u = points_[apex(s, a, b)] - pa;
-      u -= u.dot(axis) * axis;
-      if (angles_.empty()) {
-        reference = u.normalized();
-        normal = axis.cross(reference);
-        angles_.push_back(0);
-        continue;
-      }
+      const Vector u = across(s);
       double angle = std::atan2(u.dot(normal), u.dot(reference));
       if (angle < 0)
         angle += 2 * M_PI;
@@ -420,8 +428,6 @@ Mesher::mustPrune(std::uint32_t t)
       widest = std::max(widest, angles_[i] - angles_[i - 1]);
     if (widest > 1.5 * M_PI)
       return true; // a fold
-    if (scratch_.size() == 2)
-      held = true;
   }
   return bare && !held;
 }
@@ -497,17 +503,17 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
   Vector reference = points_[c] - pa;
   reference = (reference - reference.dot(axis) * axis).normalized();
   const Vector up = orientedNormal(o).normalized();
-  std::uint32_t best = 0;
+  std::uint32_t best = around_[0];
   double best_angle = std::numeric_limits<double>::infinity();
-  for (const std::uint32_t s : around_) {
-    Vector u = points_[apex(s, a, b)] - pa;
+  for (std::size_t k = 0; around_.size() > 1 && k < around_.size(); ++k) {
+    Vector u = points_[apex(around_[k], a, b)] - pa;
     u -= u.dot(axis) * axis;
     double angle = std::atan2(u.dot(up), u.dot(reference));
     if (angle <= 0)
       angle += 2 * M_PI;
     if (angle < best_angle) {
       best_angle = angle;
-      best = s;
+      best = around_[k];
     }
   }
   const SampleIndex x = apex(best, a, b);
@@ -524,6 +530,8 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
   }
   if (!x_attached && !allow_pinch)
     return {Step::pinch, best}; // x has a fan elsewhere: this would pinch it, for now
+  if (!x_attached)
+    pinched_.push_back(x); // resolvePinches() looks at it again
 
   state_[best] = kInMesh;
   oriented_[best] = {b, a, x};
@@ -591,13 +599,15 @@ Mesher::walk(std::vector<std::pair<std::uint32_t, int>>& frontier,
 void
 Mesher::resolvePinches()
 {
+  // Only a forced step can pinch a vertex (every other step keeps one fan per vertex).
   std::vector<SampleIndex> work;
   std::vector<std::uint8_t> queued(n_, 0);
-  for (SampleIndex v = 0; v < n_; ++v)
-    if (mesh_degree_[v] > 0) {
+  for (const SampleIndex v : pinched_)
+    if (!queued[v]) {
       work.push_back(v);
       queued[v] = 1;
     }
+  pinched_.clear();
   std::vector<std::uint32_t> fan, label;
   std::vector<std::size_t> size;
   while (!work.empty()) {
@@ -767,11 +777,11 @@ Mesher::traceLoops() const
 // The hole stays open, and everything is undone, when it is a true boundary
 // (isTrueBoundary) or when closing it would break the manifold.
 void
-Mesher::stitch()
+Mesher::stitch(std::vector<std::vector<SampleIndex>>& loops)
 {
-  const std::vector<std::vector<SampleIndex>> loops = traceLoops();
   if (loops.empty())
     return;
+  std::vector<std::uint8_t> stitched(loops.size(), 0);
 
   // Offer every hole its Delaunay triangles, in a group of its own.
   std::vector<SampleIndex> neighbours;
@@ -845,6 +855,7 @@ Mesher::stitch()
         !isTrueBoundary(area(added), perimeter, spacing)) {
       ++report_.stitched_holes;
       report_.stitched_triangles += added.size();
+      stitched[h] = 1;
       continue;
     }
     undo(added);
@@ -869,11 +880,18 @@ Mesher::stitch()
     if (closes(loop, added)) {
       ++report_.stitched_holes;
       report_.stitched_triangles += added.size();
+      stitched[h] = 1;
     }
     else {
       undo(added);
     }
   }
+  // Every hole was closed completely or not at all: the others are what stays open.
+  std::size_t kept = 0;
+  for (std::size_t h = 0; h < loops.size(); ++h)
+    if (!stitched[h])
+      loops[kept++] = std::move(loops[h]);
+  loops.resize(kept);
 }
 
 double
@@ -1058,31 +1076,45 @@ Mesher::orientClosedComponentsOutward()
 void
 Mesher::run(std::vector<TriangleIndices>& output)
 {
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point start = Clock::now();
+  const auto lap = [&](double& seconds) {
+    const Clock::time_point now = Clock::now();
+    seconds = std::chrono::duration<double>(now - start).count();
+    start = now;
+  };
   report_ = ReconstructionReport();
+  ReconstructionReport::Timings& timings = report_.timings;
   if (parameters_.detect_boundary)
     detectBoundarySamples(voronoi_, parameters_.boundary, report_.boundary_samples);
   else
     report_.boundary_samples.assign(n_, 0);
   mesh_degree_.assign(n_, 0);
+  lap(timings.boundary);
 
   measureSpacing();
   collectCandidates();
   removeLids();
+  lap(timings.candidates);
   report_.pruned_triangles = prune(kCoconeGroup);
+  lap(timings.pruning);
   walkAll();
   resolvePinches();
+  lap(timings.walk);
+  report_.open_loops = traceLoops();
   if (parameters_.stitch_holes)
-    stitch();
+    stitch(report_.open_loops);
+  lap(timings.stitching);
   orientClosedComponentsOutward();
 
   output.clear();
   for (std::uint32_t t = 0; t < pool_.size(); ++t)
     if (state_[t] == kInMesh)
       output.push_back(oriented_[t]);
-  report_.open_loops = traceLoops();
   for (SampleIndex v = 0; v < n_; ++v)
     if (mesh_degree_[v] == 0)
       report_.unused_samples.push_back(v);
+  lap(timings.finishing);
 }
 
 } // namespace

@@ -140,9 +140,9 @@ toEigen(const Point& p)
   return {p.x(), p.y(), p.z()};
 }
 
-/** The cells incident to a vertex, gathered with a small open-addressing set instead of
- * CGAL's incident_cells (which marks cells in place and so cannot run concurrently).
- * One instance per thread; after the first vertices it no longer allocates. */
+/** The cells incident to a vertex, gathered without CGAL's incident_cells (which marks
+ * cells in place and so cannot run concurrently). One instance per thread; after the
+ * first vertices it no longer allocates. */
 class StarGatherer
 {
 public:
@@ -150,12 +150,7 @@ public:
   gather(VertexHandle v);
 
 private:
-  bool
-  insert(const void* key);
   std::vector<CellHandle> cells_;
-  std::vector<const void*> keys_;
-  std::vector<std::uint32_t> stamps_;
-  std::uint32_t stamp_ = 0;
 };
 
 /** Classification of a point relative to the double cone of a cocone. */
@@ -270,6 +265,7 @@ struct VoronoiCocone::Impl
 {
   detail::Delaunay dt;
   Status status = Status::not_computed;
+  VoronoiCocone::Timings timings;
   std::string message;
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector3d> centered;

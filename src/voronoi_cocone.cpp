@@ -7,6 +7,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <new>
 #include <sstream>
@@ -44,14 +45,10 @@ namespace detail {
 const std::vector<CellHandle>&
 StarGatherer::gather(VertexHandle v)
 {
+  // Breadth first through the facets that contain v. A star holds about 25 to 40
+  // cells, so a linear scan of what was found (contiguous, vectorized) beats hashing.
   cells_.clear();
-  if (++stamp_ == 0) { // wrapped around: forget every old entry
-    std::fill(stamps_.begin(), stamps_.end(), 0u);
-    stamp_ = 1;
-  }
-  const CellHandle start = v->cell();
-  insert(&*start);
-  cells_.push_back(start);
+  cells_.push_back(v->cell());
   for (std::size_t head = 0; head < cells_.size(); ++head) {
     const CellHandle c = cells_[head];
     const int iv = c->index(v);
@@ -59,47 +56,11 @@ StarGatherer::gather(VertexHandle v)
       if (i == iv)
         continue;
       const CellHandle n = c->neighbor(i); // shares facet i, which contains v
-      if (insert(&*n))
+      if (std::find(cells_.begin(), cells_.end(), n) == cells_.end())
         cells_.push_back(n);
     }
   }
   return cells_;
-}
-
-bool
-StarGatherer::insert(const void* key)
-{
-  // Keep the load factor under 1/2: stars hold about 25 cells, a few hundreds at worst.
-  if (keys_.size() < 2 * (cells_.size() + 1)) {
-    const std::size_t capacity = std::max<std::size_t>(64, 4 * (cells_.size() + 1));
-    std::size_t size = 64;
-    while (size < capacity)
-      size *= 2;
-    std::vector<const void*> old_keys;
-    old_keys.reserve(cells_.size());
-    for (const CellHandle& c : cells_)
-      old_keys.push_back(&*c);
-    keys_.assign(size, nullptr);
-    stamps_.assign(size, 0u);
-    stamp_ = 1;
-    for (const void* k : old_keys) {
-      std::size_t slot = (reinterpret_cast<std::uintptr_t>(k) >> 4) & (size - 1);
-      while (stamps_[slot] == stamp_)
-        slot = (slot + 1) & (size - 1);
-      keys_[slot] = k;
-      stamps_[slot] = stamp_;
-    }
-  }
-  const std::size_t mask = keys_.size() - 1;
-  std::size_t slot = (reinterpret_cast<std::uintptr_t>(key) >> 4) & mask;
-  while (stamps_[slot] == stamp_) {
-    if (keys_[slot] == key)
-      return false;
-    slot = (slot + 1) & mask;
-  }
-  keys_[slot] = key;
-  stamps_[slot] = stamp_;
-  return true;
 }
 
 // ---------------------------------------------------------------------------------
@@ -292,6 +253,12 @@ unsigned
 VoronoiCocone::getNumberOfThreads() const
 {
   return threads_;
+}
+
+const VoronoiCocone::Timings&
+VoronoiCocone::timings() const
+{
+  return impl_->timings;
 }
 
 Status
@@ -613,6 +580,11 @@ VoronoiCocone::compute(const std::vector<Eigen::Vector3d>& points)
     return fail(Status::too_few_points,
                 "need at least 4 points for a 3D Voronoi diagram, got " + std::to_string(n));
 
+  using Clock = std::chrono::steady_clock;
+  const auto seconds_since = [](Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+  };
+  const Clock::time_point start = Clock::now();
   try {
     runInArena(threads_, [&] {
       d.offset = sum / static_cast<double>(n);
@@ -677,6 +649,8 @@ VoronoiCocone::compute(const std::vector<Eigen::Vector3d>& points)
                     ": no 3D Voronoi cell to measure");
   }
 
+  d.timings.delaunay = seconds_since(start);
+  const Clock::time_point geometry_start = Clock::now();
   try {
     runInArena(threads_, [&] { computeGeometry(d, std::sin(cocone_angle_)); });
   }
@@ -686,6 +660,7 @@ VoronoiCocone::compute(const std::vector<Eigen::Vector3d>& points)
   catch (const std::exception& e) {
     return fail(Status::internal_error, std::string("Voronoi geometry failed: ") + e.what());
   }
+  d.timings.geometry = seconds_since(geometry_start);
   d.status = Status::ok;
   d.message.clear();
   return Status::ok;

@@ -60,6 +60,16 @@ struct ReconstructionReport
   /** The boundary loops left open (true boundaries and holes that could not be closed),
    * as vertex cycles oriented with the surface. */
   std::vector<std::vector<SampleIndex>> open_loops;
+  /** Wall-clock seconds of each stage. */
+  struct Timings
+  {
+    double boundary = 0;   ///< BOUNDARY
+    double candidates = 0; ///< candidates, local spacing and lids
+    double pruning = 0;
+    double walk = 0; ///< walk and pinch resolution
+    double stitching = 0;
+    double finishing = 0; ///< orientation, loops, unused samples
+  } timings;
   /** Samples in no output triangle: duplicates (their representative is used instead),
    * isolated outliers, and samples the manifold extraction had to leave out. */
   std::vector<SampleIndex> unused_samples;

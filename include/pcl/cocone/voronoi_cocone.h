@@ -164,6 +164,15 @@ public:
   Status
   compute(const std::vector<Eigen::Vector3d>& points);
 
+  /** \brief Wall-clock seconds of the stages of the last compute(). */
+  struct Timings
+  {
+    double delaunay = 0; ///< triangulation, duplicates included
+    double geometry = 0; ///< circumcenters, poles, radii, marks, incidence lists
+  };
+  const Timings&
+  timings() const;
+
   /** \brief Status of the last compute() or decimate(). */
   Status
   status() const;
