@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <pcl/cocone/cocone_mesher.h>
+#include <pcl/cocone/mesh_geometry.h>
 
 #include <Eigen/Geometry>
 
@@ -27,7 +28,9 @@ constexpr std::uint32_t kCoconeGroup = 0;
 // Triangles of polygon fills (not Delaunay triangles): never offered to a walk.
 constexpr std::uint32_t kPolygonGroup = std::numeric_limits<std::uint32_t>::max();
 // Loops longer than this are not filled as polygons (O(m^3) time, O(m^2) memory).
-constexpr std::size_t kLargestPolygonFill = 200;
+constexpr std::size_t kLargestPolygonFill = 60;
+// How far (in local spacings) an unused sample may lie from the mesh to be put back.
+constexpr double kInsertionReach = 1.0;
 
 // State of a triangle of the pool.
 enum : std::uint8_t
@@ -140,11 +143,18 @@ private:
   removeLids();
   bool
   fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
-                           std::vector<TriangleIndices>& fill);
+                           std::vector<TriangleIndices>& fill,
+                           std::vector<std::uint32_t>& blockers);
+  bool
+  fillPolygon(std::vector<SampleIndex>& loop, double spacing);
+  bool
+  traceLoopFrom(SampleIndex start, std::vector<SampleIndex>& loop) const;
   bool
   closes(const std::vector<SampleIndex>& loop, const std::vector<std::uint32_t>& added);
   void
   undo(const std::vector<std::uint32_t>& added);
+  bool
+  intersectsSurface(const std::vector<std::uint32_t>& added) const;
   double
   area(const std::vector<std::uint32_t>& triangles) const;
   std::size_t
@@ -177,13 +187,15 @@ private:
        std::uint32_t group,
        std::vector<std::uint32_t>& added);
   void
-  resolvePinches();
+  resolvePinches(std::vector<std::uint32_t>* removed = nullptr);
   bool
   seedTriangle(std::uint32_t& seed);
   void
   stitch(std::vector<std::vector<SampleIndex>>& loops);
   std::vector<std::vector<SampleIndex>>
   traceLoops() const;
+  void
+  insertUnusedSamples();
   void
   orientClosedComponentsOutward();
 
@@ -597,7 +609,7 @@ Mesher::walk(std::vector<std::pair<std::uint32_t, int>>& frontier,
 // vertex) keeps its largest fan; the other triangles go, and their vertices are checked
 // again. The holes this leaves are stitched like any other.
 void
-Mesher::resolvePinches()
+Mesher::resolvePinches(std::vector<std::uint32_t>* removed)
 {
   // Only a forced step can pinch a vertex (every other step keeps one fan per vertex).
   std::vector<SampleIndex> work;
@@ -625,7 +637,10 @@ Mesher::resolvePinches()
       if (label[i] == keep)
         continue;
       state_[fan[i]] = kRejected;
-      ++report_.pinch_removed_triangles;
+      if (removed != nullptr)
+        removed->push_back(fan[i]);
+      else
+        ++report_.pinch_removed_triangles;
       for (const SampleIndex w : oriented_[fan[i]]) {
         --mesh_degree_[w];
         if (w != v && !queued[w]) {
@@ -860,13 +875,60 @@ Mesher::stitch(std::vector<std::vector<SampleIndex>>& loops)
     }
     undo(added);
 
-    if (loop.size() > kLargestPolygonFill || !fillByDynamicProgramming(loop, fill))
+    if (fillPolygon(loops[h], spacing))
+      stitched[h] = 1;
+  }
+  // Every hole was closed completely or not at all: the others are what stays open.
+  std::size_t kept = 0;
+  for (std::size_t h = 0; h < loops.size(); ++h)
+    if (!stitched[h]) {
+      if (kept != h)
+        loops[kept] = std::move(loops[h]);
+      ++kept;
+    }
+  loops.resize(kept);
+}
+
+// Closes a hole with the least-area triangulation of its loop. Where every such
+// triangulation would cut through surface triangles around the hole (typically a
+// triangle the walk laid across a sharp edge), those triangles are removed, the hole
+// grows to include them and the fill is tried again, a few times at most; if the hole
+// still cannot be closed, or turns out to be a true boundary, everything is restored.
+bool
+Mesher::fillPolygon(std::vector<SampleIndex>& loop, double spacing)
+{
+  constexpr int kGrowths = 3;
+  std::vector<std::uint32_t> removed, blockers, added;
+  std::vector<TriangleIndices> fill;
+  std::vector<SampleIndex> grown;
+  bool closed = false;
+  for (int attempt = 0; attempt <= kGrowths && !closed; ++attempt) {
+    if (loop.size() > kLargestPolygonFill)
+      break;
+    if (!fillByDynamicProgramming(loop, fill, blockers)) {
+      if (blockers.empty() || attempt == kGrowths)
+        break;
+      // Grow the hole over the triangles in the way; where that pinches a vertex (a
+      // blocker touching the hole at a vertex only), drop its smaller fan so that the
+      // holes join through an edge.
+      undo(blockers);
+      removed.insert(removed.end(), blockers.begin(), blockers.end());
+      for (const std::uint32_t t : blockers)
+        pinched_.insert(pinched_.end(), oriented_[t].begin(), oriented_[t].end());
+      resolvePinches(&removed);
+      if (!traceLoopFrom(loop.front(), grown) &&
+          !traceLoopFrom(mesh_degree_[loop.back()] ? loop.back() : loop.front(), grown))
+        break;
+      loop = grown;
       continue;
-    double fill_area = 0;
+    }
+    double perimeter = 0, fill_area = 0;
+    for (std::size_t k = 0; k < loop.size(); ++k)
+      perimeter += (points_[loop[k]] - points_[loop[(k + 1) % loop.size()]]).norm();
     for (const TriangleIndices& t : fill)
       fill_area += 0.5 * orientedNormal(t).norm();
     if (isTrueBoundary(fill_area, perimeter, spacing))
-      continue;
+      break;
     added.clear();
     for (const TriangleIndices& t : fill) {
       addToPool(t, kPolygonGroup);
@@ -877,21 +939,60 @@ Mesher::stitch(std::vector<std::vector<SampleIndex>>& loops)
       added.push_back(id);
     }
     rebuildIncidence();
-    if (closes(loop, added)) {
-      ++report_.stitched_holes;
-      report_.stitched_triangles += added.size();
-      stitched[h] = 1;
-    }
-    else {
+    closed = closes(loop, added);
+    if (!closed) {
       undo(added);
+      break;
     }
   }
-  // Every hole was closed completely or not at all: the others are what stays open.
-  std::size_t kept = 0;
-  for (std::size_t h = 0; h < loops.size(); ++h)
-    if (!stitched[h])
-      loops[kept++] = std::move(loops[h]);
-  loops.resize(kept);
+  if (closed) {
+    ++report_.stitched_holes;
+    report_.stitched_triangles += added.size();
+    report_.stitched_triangles -= std::min(report_.stitched_triangles, removed.size());
+    return true;
+  }
+  for (const std::uint32_t t : removed) { // restore what was removed to grow the hole
+    state_[t] = kInMesh;
+    for (const SampleIndex v : oriented_[t])
+      ++mesh_degree_[v];
+  }
+  return false;
+}
+
+// The boundary loop through \a start, following at each vertex its single outgoing
+// boundary edge (as its mesh triangle traverses it). False if a vertex on the way has
+// none or several (a pinch), or the walk does not come back.
+bool
+Mesher::traceLoopFrom(SampleIndex start, std::vector<SampleIndex>& loop) const
+{
+  loop.clear();
+  std::vector<std::uint32_t> on_edge;
+  SampleIndex v = start;
+  for (std::size_t steps = 0; steps <= n_; ++steps) {
+    SampleIndex next = kNoSample;
+    int outgoing = 0;
+    for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1]; ++k) {
+      const std::uint32_t t = ids_[k];
+      if (state_[t] != kInMesh)
+        continue;
+      const TriangleIndices& o = oriented_[t];
+      for (int slot = 0; slot < 3; ++slot)
+        if (o[slot] == v) {
+          meshOnEdge(v, o[(slot + 1) % 3], on_edge);
+          if (on_edge.size() == 1) {
+            next = o[(slot + 1) % 3];
+            ++outgoing;
+          }
+        }
+    }
+    if (outgoing != 1)
+      return false;
+    loop.push_back(v);
+    v = next;
+    if (v == start)
+      return loop.size() >= 3;
+  }
+  return false;
 }
 
 double
@@ -904,10 +1005,13 @@ Mesher::area(const std::vector<std::uint32_t>& triangles) const
 }
 
 // True when, with \a added in the mesh, every edge of the loop and of the added
-// triangles has two triangles and every vertex involved a single fan.
+// triangles has two triangles, every vertex involved a single fan, and no added
+// triangle intersects the surface around the hole.
 bool
 Mesher::closes(const std::vector<SampleIndex>& loop, const std::vector<std::uint32_t>& added)
 {
+  if (intersectsSurface(added))
+    return false;
   std::vector<std::uint32_t> on_edge;
   for (std::size_t k = 0; k < loop.size(); ++k) {
     meshOnEdge(loop[k], loop[(k + 1) % loop.size()], on_edge);
@@ -928,6 +1032,37 @@ Mesher::closes(const std::vector<SampleIndex>& loop, const std::vector<std::uint
   return true;
 }
 
+// Whether a triangle of \a added (already in the mesh) intersects another mesh triangle
+// near it: those at the vertices of the added triangles and one ring around them.
+// Stitching fills are not restricted Delaunay triangles, so nothing else keeps them
+// from folding through the surface at sharp or thin parts.
+bool
+Mesher::intersectsSurface(const std::vector<std::uint32_t>& added) const
+{
+  std::vector<SampleIndex> ring;
+  for (const std::uint32_t t : added)
+    ring.insert(ring.end(), oriented_[t].begin(), oriented_[t].end());
+  const std::size_t first_ring = ring.size();
+  for (std::size_t i = 0; i < first_ring; ++i)
+    for (std::uint32_t k = offsets_[ring[i]]; k < offsets_[ring[i] + 1]; ++k)
+      if (state_[ids_[k]] == kInMesh)
+        ring.insert(ring.end(), oriented_[ids_[k]].begin(), oriented_[ids_[k]].end());
+  std::sort(ring.begin(), ring.end());
+  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+  std::vector<std::uint32_t> nearby;
+  for (const SampleIndex v : ring)
+    for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1]; ++k)
+      if (state_[ids_[k]] == kInMesh)
+        nearby.push_back(ids_[k]);
+  std::sort(nearby.begin(), nearby.end());
+  nearby.erase(std::unique(nearby.begin(), nearby.end()), nearby.end());
+  for (const std::uint32_t t : added)
+    for (const std::uint32_t s : nearby)
+      if (s != t && trianglesIntersect(points_, oriented_[t], oriented_[s]))
+        return true;
+  return false;
+}
+
 void
 Mesher::undo(const std::vector<std::uint32_t>& added)
 {
@@ -940,21 +1075,49 @@ Mesher::undo(const std::vector<std::uint32_t>& added)
 
 // The triangulation of the loop polygon of least total area (dynamic programming over
 // the polygon's diagonals, O(m^3)), using no diagonal that is an edge of the mesh
-// already. Triangles are oriented to continue the surface across the loop's edges.
+// already and no triangle that intersects the surface around the hole. Triangles are
+// oriented to continue the surface across the loop's edges.
 bool
 Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
-                                 std::vector<TriangleIndices>& fill)
+                                 std::vector<TriangleIndices>& fill,
+                                 std::vector<std::uint32_t>& blockers)
 {
   fill.clear();
+  blockers.clear();
   const std::size_t m = loop.size();
   if (m < 3)
     return false;
+  // The surface around the hole: mesh triangles at its vertices and one ring further.
+  std::vector<SampleIndex> ring(loop);
+  for (const SampleIndex v : loop)
+    for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1]; ++k)
+      if (state_[ids_[k]] == kInMesh)
+        ring.insert(ring.end(), oriented_[ids_[k]].begin(), oriented_[ids_[k]].end());
+  std::sort(ring.begin(), ring.end());
+  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+  std::vector<std::uint32_t> nearby;
+  for (const SampleIndex v : ring)
+    for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1]; ++k)
+      if (state_[ids_[k]] == kInMesh)
+        nearby.push_back(ids_[k]);
+  std::sort(nearby.begin(), nearby.end());
+  nearby.erase(std::unique(nearby.begin(), nearby.end()), nearby.end());
+
   std::vector<std::uint32_t> on_edge;
   const auto usable = [&](std::size_t i, std::size_t k) {
     if (k == i + 1 || (i == 0 && k == m - 1))
       return true; // an edge of the loop
     meshOnEdge(loop[i], loop[k], on_edge);
     return on_edge.empty();
+  };
+  const auto crosses = [&](const TriangleIndices& t) {
+    bool crossing = false;
+    for (const std::uint32_t s : nearby)
+      if (trianglesIntersect(points_, t, oriented_[s])) {
+        crossing = true;
+        blockers.push_back(s);
+      }
+    return crossing;
   };
   const double infinity = std::numeric_limits<double>::infinity();
   std::vector<double> cost(m * m, infinity);
@@ -970,14 +1133,17 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
         const double sub = cost[i * m + j] + cost[j * m + k];
         if (!(sub < infinity))
           continue;
-        const double total =
-            sub + 0.5 * orientedNormal({loop[i], loop[j], loop[k]}).norm();
-        if (total < cost[i * m + k]) {
+        // The loop runs a -> b as its mesh triangles traverse it; the fill runs b -> a.
+        const TriangleIndices triangle = {loop[j], loop[i], loop[k]};
+        const double total = sub + 0.5 * orientedNormal(triangle).norm();
+        if (total < cost[i * m + k] && !crosses(triangle)) {
           cost[i * m + k] = total;
           split[i * m + k] = static_cast<std::uint32_t>(j);
         }
       }
     }
+  std::sort(blockers.begin(), blockers.end());
+  blockers.erase(std::unique(blockers.begin(), blockers.end()), blockers.end());
   if (!(cost[m - 1] < infinity))
     return false;
   std::vector<std::pair<std::size_t, std::size_t>> stack = {{0, m - 1}};
@@ -987,7 +1153,6 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
     if (k < i + 2)
       continue;
     const std::size_t j = split[i * m + k];
-    // The loop runs a -> b as its mesh triangles traverse it; the fill runs b -> a.
     fill.push_back({loop[j], loop[i], loop[k]});
     stack.emplace_back(i, j);
     stack.emplace_back(j, k);
@@ -1030,6 +1195,121 @@ Mesher::countFans(SampleIndex v) const
 {
   std::vector<std::uint32_t> fan, label;
   return labelFans(v, fan, label);
+}
+
+// Samples left in no triangle although they lie on the surface (a hole grown over
+// them, a walk that went around them, often at sharp corners) are put back by splitting
+// the mesh triangle they lie over in three, or the edge they lie next to (and its two
+// triangles in two), when they are within kInsertionReach local spacings of it and the
+// new triangles cut nothing. Duplicates and outliers stay out. Triangles split earlier
+// in the same pass are not seen by later checks; the pass runs once, on few samples.
+void
+Mesher::insertUnusedSamples()
+{
+  std::vector<SampleIndex> neighbours, candidates;
+  std::vector<std::uint32_t> nearby;
+  std::vector<TriangleIndices> splits;
+  std::vector<std::uint32_t> nearby_edge;
+  std::size_t inserted = 0;
+  for (SampleIndex v = 0; v < n_; ++v) {
+    if (mesh_degree_[v] != 0 || voronoi_.representative(v) != v || !(spacing_[v] > 0))
+      continue;
+    // The mesh triangles at its Delaunay neighbours.
+    voronoi_.delaunayNeighbours(v, neighbours);
+    nearby.clear();
+    for (const SampleIndex w : neighbours)
+      for (std::uint32_t k = offsets_[w]; k < offsets_[w + 1]; ++k)
+        if (state_[ids_[k]] == kInMesh)
+          nearby.push_back(ids_[k]);
+    std::sort(nearby.begin(), nearby.end());
+    nearby.erase(std::unique(nearby.begin(), nearby.end()), nearby.end());
+    // The closest point of those triangles: inside one (split it in three) or on an
+    // edge shared by two (split both in two).
+    // Measured in the spacing of the surface there, not of v: an outlier's own nearest
+    // neighbours are far.
+    const Vector p = points_[v];
+    const auto reach = [&](const TriangleIndices& o) {
+      return kInsertionReach * std::min({spacing_[o[0]], spacing_[o[1]], spacing_[o[2]]});
+    };
+    double best_distance = std::numeric_limits<double>::infinity();
+    std::uint32_t best = 0;
+    int best_edge = -1; // -1: inside the triangle; k: on its edge k -> k + 1
+    for (const std::uint32_t t : nearby) {
+      const TriangleIndices& o = oriented_[t];
+      const Vector a = points_[o[0]], b = points_[o[1]], c = points_[o[2]];
+      const Vector normal = (b - a).cross(c - a);
+      const double twice_area = normal.norm();
+      if (!(twice_area > 0))
+        continue;
+      const Vector unit = normal / twice_area;
+      const Vector q = p - (p - a).dot(unit) * unit; // projection on the plane
+      if ((b - a).cross(q - a).dot(unit) >= 0 && (c - b).cross(q - b).dot(unit) >= 0 &&
+          (a - c).cross(q - c).dot(unit) >= 0) {
+        const double distance = std::abs((p - a).dot(unit));
+        if (distance < best_distance && distance < reach(o)) {
+          best_distance = distance;
+          best = t;
+          best_edge = -1;
+        }
+        continue;
+      }
+      for (int k = 0; k < 3; ++k) {
+        const Vector e0 = points_[o[k]], e1 = points_[o[(k + 1) % 3]];
+        const double t_along = (p - e0).dot(e1 - e0) / (e1 - e0).squaredNorm();
+        if (!(t_along > 0 && t_along < 1))
+          continue; // nearest to a corner: no edge to split
+        const double distance = (e0 + t_along * (e1 - e0) - p).norm();
+        if (distance < best_distance && distance < reach(o)) {
+          best_distance = distance;
+          best = t;
+          best_edge = k;
+        }
+      }
+    }
+    if (!std::isfinite(best_distance))
+      continue;
+    const TriangleIndices o = oriented_[best];
+    std::vector<std::uint32_t> replaced = {best};
+    if (best_edge < 0) {
+      splits = {{o[0], o[1], v}, {o[1], o[2], v}, {o[2], o[0], v}};
+    }
+    else {
+      const SampleIndex e0 = o[best_edge], e1 = o[(best_edge + 1) % 3];
+      const SampleIndex apex_here = o[(best_edge + 2) % 3];
+      meshOnEdge(e0, e1, nearby_edge);
+      if (nearby_edge.size() != 2)
+        continue;
+      const std::uint32_t other = nearby_edge[0] == best ? nearby_edge[1] : nearby_edge[0];
+      const SampleIndex apex_there = apex(other, e0, e1);
+      replaced.push_back(other);
+      // best traverses e0 -> e1, other e1 -> e0; keep both orientations.
+      splits = {{e0, v, apex_here}, {v, e1, apex_here}, {e1, v, apex_there},
+                {v, e0, apex_there}};
+    }
+    bool crossing = false;
+    for (const TriangleIndices& split : splits)
+      for (const std::uint32_t t : nearby)
+        if (std::find(replaced.begin(), replaced.end(), t) == replaced.end() &&
+            trianglesIntersect(points_, split, oriented_[t]))
+          crossing = true;
+    if (crossing)
+      continue;
+    for (const std::uint32_t t : replaced) {
+      state_[t] = kRejected;
+      for (const SampleIndex w : oriented_[t])
+        --mesh_degree_[w];
+    }
+    for (const TriangleIndices& split : splits) {
+      addToPool(split, kPolygonGroup);
+      state_.back() = kInMesh;
+      for (const SampleIndex w : split)
+        ++mesh_degree_[w];
+    }
+    ++inserted;
+  }
+  report_.inserted_samples = inserted;
+  if (inserted > 0)
+    rebuildIncidence();
 }
 
 // Closed components face outward: flip any whose signed volume is negative.
@@ -1104,6 +1384,7 @@ Mesher::run(std::vector<TriangleIndices>& output)
   report_.open_loops = traceLoops();
   if (parameters_.stitch_holes)
     stitch(report_.open_loops);
+  insertUnusedSamples();
   lap(timings.stitching);
   orientClosedComponentsOutward();
 

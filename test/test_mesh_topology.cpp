@@ -421,23 +421,23 @@ TEST(MeshChecks, CrossingTrianglesIntersectOnce)
 {
   const Points points = {{0, 0, 0},      {2, 0, 0},     {0, 2, 0},
                          {0.5, 0.5, -1}, {0.5, 0.5, 1}, {1.5, 0.2, 0}};
-  EXPECT_EQ(checks::countSelfIntersections(points, {{0, 1, 2}, {3, 4, 5}}), 1u);
+  EXPECT_EQ(pcl::cocone::countSelfIntersections(points, {{0, 1, 2}, {3, 4, 5}}), 1u);
   // Far apart: none.
   const Points apart = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0},
                         {0, 0, 5}, {1, 0, 5}, {0, 1, 6}};
-  EXPECT_EQ(checks::countSelfIntersections(apart, {{0, 1, 2}, {3, 4, 5}}), 0u);
+  EXPECT_EQ(pcl::cocone::countSelfIntersections(apart, {{0, 1, 2}, {3, 4, 5}}), 0u);
 }
 
 TEST(MeshChecks, ClosedMeshesDoNotSelfIntersect)
 {
-  EXPECT_EQ(checks::countSelfIntersections(tetrahedronPoints(), tetrahedron()), 0u);
-  EXPECT_EQ(checks::countSelfIntersections(octahedronPoints(), octahedron()), 0u);
+  EXPECT_EQ(pcl::cocone::countSelfIntersections(tetrahedronPoints(), tetrahedron()), 0u);
+  EXPECT_EQ(pcl::cocone::countSelfIntersections(octahedronPoints(), octahedron()), 0u);
   Points torus = torusPoints(24, 12);
   const Triangles triangles = grid(24, 12, true, true);
-  EXPECT_EQ(checks::countSelfIntersections(torus, triangles), 0u);
+  EXPECT_EQ(pcl::cocone::countSelfIntersections(torus, triangles), 0u);
   // Push one vertex of the outer equator through the tube to the far side.
   torus[0] = Eigen::Vector3d(0.5, 0, 0);
-  EXPECT_GT(checks::countSelfIntersections(torus, triangles), 0u);
+  EXPECT_GT(pcl::cocone::countSelfIntersections(torus, triangles), 0u);
 }
 
 TEST(MeshChecks, SharedVertexAndSharedEdgeCases)
@@ -453,7 +453,7 @@ TEST(MeshChecks, SharedVertexAndSharedEdgeCases)
   auto count = [&](const TriangleIndices& other) {
     Triangles soup = base;
     soup.push_back(other);
-    return checks::countSelfIntersections(p, soup);
+    return pcl::cocone::countSelfIntersections(p, soup);
   };
   EXPECT_EQ(count({0, 3, 4}), 0u);  // vertex shared, nothing else
   EXPECT_EQ(count({0, 5, 6}), 1u);  // vertex shared, the far edge pierces triangle 0
@@ -469,8 +469,8 @@ TEST(MeshChecks, NonManifoldSoupsAreAccepted)
   // Three fins on one edge, and a bowtie: no intersection beyond shared features.
   const Points p = {{0, 0, 0},   {1, 0, 0},  {0.5, 1, 0}, {0.5, -1, 0.2},
                     {0.5, 0, 1}, {-1, 1, 0}, {-1, -1, 0}};
-  EXPECT_EQ(checks::countSelfIntersections(p, {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}), 0u);
-  EXPECT_EQ(checks::countSelfIntersections(p, {{0, 1, 2}, {0, 5, 6}}), 0u);
+  EXPECT_EQ(pcl::cocone::countSelfIntersections(p, {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}), 0u);
+  EXPECT_EQ(pcl::cocone::countSelfIntersections(p, {{0, 1, 2}, {0, 5, 6}}), 0u);
 }
 
 TEST(MeshChecks, SignedVolumeFollowsOrientation)

@@ -5,7 +5,6 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/box_intersection_d.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -24,10 +23,8 @@ namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
-using Segment = Kernel::Segment_3;
 using Triangle = Kernel::Triangle_3;
 
-constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max();
 
 std::vector<Point>
 toCgal(const std::vector<Eigen::Vector3d>& points)
@@ -50,91 +47,7 @@ checkIndices(std::size_t num_points, const std::vector<TriangleIndices>& triangl
                                 " points)");
 }
 
-/** Whether two non-degenerate triangles meet other than in the vertices and the edge
- * they share (by index). The predicates are exact (filtered), so a touching pair
- * counts as intersecting. */
-bool
-intersectBeyondSharedFeatures(const std::vector<Point>& p,
-                              const TriangleIndices& a,
-                              const TriangleIndices& b)
-{
-  int shared = 0;
-  int ia = -1, ib = -1; // positions of the (last) shared vertex in a and b
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (a[i] == b[j]) {
-        ++shared;
-        ia = i;
-        ib = j;
-      }
-  const Triangle ta(p[a[0]], p[a[1]], p[a[2]]);
-  const Triangle tb(p[b[0]], p[b[1]], p[b[2]]);
-  switch (shared) {
-  case 0:
-    return CGAL::do_intersect(ta, tb);
-  case 1: {
-    // The two triangles are convex and contain the common vertex v: if they share more
-    // than v, a segment from v through a second common point leaves the first of them
-    // through its edge opposite to v, at a point of the other one. And that opposite
-    // edge does not contain v, so meeting it means meeting beyond v.
-    const Segment opposite_a(p[a[(ia + 1) % 3]], p[a[(ia + 2) % 3]]);
-    const Segment opposite_b(p[b[(ib + 1) % 3]], p[b[(ib + 2) % 3]]);
-    return CGAL::do_intersect(opposite_a, tb) || CGAL::do_intersect(opposite_b, ta);
-  }
-  case 2: {
-    // Not coplanar: the planes meet in the line of the shared edge, and the triangles
-    // in the edge itself. Coplanar: they overlap iff the far vertices are on the same
-    // side of the edge.
-    std::uint32_t u = kNoVertex, v = kNoVertex, x = kNoVertex, y = kNoVertex;
-    for (int i = 0; i < 3; ++i) {
-      const bool in_b = a[i] == b[0] || a[i] == b[1] || a[i] == b[2];
-      if (!in_b)
-        x = a[i];
-      else if (u == kNoVertex)
-        u = a[i];
-      else
-        v = a[i];
-      const bool in_a = b[i] == a[0] || b[i] == a[1] || b[i] == a[2];
-      if (!in_a)
-        y = b[i];
-    }
-    return CGAL::coplanar(p[u], p[v], p[x], p[y]) &&
-           CGAL::coplanar_orientation(p[u], p[v], p[x], p[y]) == CGAL::POSITIVE;
-  }
-  default:
-    return true; // the same triangle twice
-  }
-}
-
 } // namespace
-
-std::size_t
-countSelfIntersections(const std::vector<Eigen::Vector3d>& points,
-                       const std::vector<TriangleIndices>& triangles)
-{
-  checkIndices(points.size(), triangles);
-  const std::vector<Point> p = toCgal(points);
-  using Box =
-      CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t,
-                                                CGAL::Box_intersection_d::ID_EXPLICIT>;
-  std::vector<Box> boxes;
-  boxes.reserve(triangles.size());
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
-    const TriangleIndices& tri = triangles[t];
-    // A triangle without area (repeated index or collinear corners) has no interior to
-    // intersect; analyzeTriangleMesh reports the combinatorial ones.
-    if (CGAL::collinear(p[tri[0]], p[tri[1]], p[tri[2]]))
-      continue;
-    boxes.emplace_back(p[tri[0]].bbox() + p[tri[1]].bbox() + p[tri[2]].bbox(), t);
-  }
-  std::size_t count = 0;
-  CGAL::box_self_intersection_d(
-      boxes.begin(), boxes.end(), [&](const Box& a, const Box& b) {
-        if (intersectBeyondSharedFeatures(p, triangles[a.info()], triangles[b.info()]))
-          ++count;
-      });
-  return count;
-}
 
 DistanceStats
 distancesToMesh(const std::vector<Eigen::Vector3d>& queries,

@@ -2,6 +2,7 @@
 // Geometric checks of reconstructed meshes, for tests and benchmarks (CGAL inside).
 #pragma once
 
+#include <pcl/cocone/mesh_geometry.h>
 #include <pcl/cocone/mesh_topology.h>
 
 #include <Eigen/Core>
@@ -15,15 +16,7 @@ namespace pcl {
 namespace cocone {
 namespace test {
 
-/** Number of pairs of triangles that intersect other than along a shared edge or at a
- * shared vertex (by index; touching counts). 0 for a mesh without self-intersection.
- * Works on any triangle soup, non-manifold ones included (CGAL box intersection and
- * exact predicates: CGAL 5.5's Polygon Mesh Processing has no soup version); vertex
- * indices index \a points (std::out_of_range otherwise). Triangles with collinear
- * corners are skipped: analyzeTriangleMesh reports the degenerate ones. */
-std::size_t
-countSelfIntersections(const std::vector<Eigen::Vector3d>& points,
-                       const std::vector<TriangleIndices>& triangles);
+// countSelfIntersections comes from the library: pcl/cocone/mesh_geometry.h.
 
 /** Distances from a set of query points to a triangle mesh (AABB tree); +infinity
  * when the mesh has no triangle with area, 0 when there are no queries. */

@@ -56,7 +56,10 @@ struct ReconstructionReport
   /** Walked triangles removed again because a vertex ended with several fans. */
   std::size_t pinch_removed_triangles = 0;
   std::size_t stitched_holes = 0;      ///< holes closed by stitching
-  std::size_t stitched_triangles = 0;  ///< Delaunay triangles added to close them
+  std::size_t stitched_triangles = 0;  ///< triangles added to close them
+  /** Samples left out by the extraction and put back by splitting the triangle they
+   * lie over (within half a local spacing). */
+  std::size_t inserted_samples = 0;
   /** The boundary loops left open (true boundaries and holes that could not be closed),
    * as vertex cycles oriented with the surface. */
   std::vector<std::vector<SampleIndex>> open_loops;
