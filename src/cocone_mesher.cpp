@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <pcl/cocone/cocone_mesher.h>
 #include <pcl/cocone/mesh_geometry.h>
+#include <pcl/console/print.h>
 
 #include <Eigen/Geometry>
 
@@ -866,8 +867,12 @@ Mesher::stitch(std::vector<std::vector<SampleIndex>>& loops)
     prune(group);
     added.clear();
     walk(frontier, group, added);
-    if (!added.empty() && closes(loop, added) &&
-        !isTrueBoundary(area(added), perimeter, spacing)) {
+    const bool walk_closes = !added.empty() && closes(loop, added);
+    PCL_DEBUG("[pcl::cocone::reconstructSurface] hole of %zu edges: Delaunay fill %s, "
+              "size %.2f local spacings\n",
+              loop.size(), walk_closes ? "closes it" : "does not close it",
+              2 * area(added) / perimeter / spacing);
+    if (walk_closes && !isTrueBoundary(area(added), perimeter, spacing)) {
       ++report_.stitched_holes;
       report_.stitched_triangles += added.size();
       stitched[h] = 1;
@@ -927,6 +932,9 @@ Mesher::fillPolygon(std::vector<SampleIndex>& loop, double spacing)
       perimeter += (points_[loop[k]] - points_[loop[(k + 1) % loop.size()]]).norm();
     for (const TriangleIndices& t : fill)
       fill_area += 0.5 * orientedNormal(t).norm();
+    PCL_DEBUG("[pcl::cocone::reconstructSurface] hole of %zu edges: polygon fill of size "
+              "%.2f local spacings\n",
+              loop.size(), 2 * fill_area / perimeter / spacing);
     if (isTrueBoundary(fill_area, perimeter, spacing))
       break;
     added.clear();
@@ -1201,19 +1209,26 @@ Mesher::countFans(SampleIndex v) const
 // them, a walk that went around them, often at sharp corners) are put back by splitting
 // the mesh triangle they lie over in three, or the edge they lie next to (and its two
 // triangles in two), when they are within kInsertionReach local spacings of it and the
-// new triangles cut nothing. Duplicates and outliers stay out. Triangles split earlier
-// in the same pass are not seen by later checks; the pass runs once, on few samples.
+// new triangles cut nothing. Duplicates and outliers stay out.
 void
 Mesher::insertUnusedSamples()
 {
-  std::vector<SampleIndex> neighbours, candidates;
+  std::vector<SampleIndex> neighbours, pending, deferred;
   std::vector<std::uint32_t> nearby;
   std::vector<TriangleIndices> splits;
   std::vector<std::uint32_t> nearby_edge;
+  std::vector<std::uint8_t> touched(n_, 0);
   std::size_t inserted = 0;
-  for (SampleIndex v = 0; v < n_; ++v) {
-    if (mesh_degree_[v] != 0 || voronoi_.representative(v) != v || !(spacing_[v] > 0))
-      continue;
+  for (SampleIndex v = 0; v < n_; ++v)
+    if (mesh_degree_[v] == 0 && voronoi_.representative(v) == v && spacing_[v] > 0)
+      pending.push_back(v);
+  // New triangles enter the incidence lists only when they are rebuilt, so a sample
+  // whose surroundings changed in this pass waits for the next one.
+  for (int pass = 0; pass < 4 && !pending.empty(); ++pass) {
+    deferred.clear();
+    std::fill(touched.begin(), touched.end(), 0);
+    const std::size_t inserted_before = inserted;
+    for (const SampleIndex v : pending) {
     // The mesh triangles at its Delaunay neighbours.
     voronoi_.delaunayNeighbours(v, neighbours);
     nearby.clear();
@@ -1223,6 +1238,14 @@ Mesher::insertUnusedSamples()
           nearby.push_back(ids_[k]);
     std::sort(nearby.begin(), nearby.end());
     nearby.erase(std::unique(nearby.begin(), nearby.end()), nearby.end());
+    bool waits = false;
+    for (const std::uint32_t t : nearby)
+      for (const SampleIndex w : oriented_[t])
+        waits = waits || touched[w];
+    if (waits) {
+      deferred.push_back(v);
+      continue;
+    }
     // The closest point of those triangles: inside one (split it in three) or on an
     // edge shared by two (split both in two).
     // Measured in the spacing of the surface there, not of v: an outlier's own nearest
@@ -1302,14 +1325,20 @@ Mesher::insertUnusedSamples()
     for (const TriangleIndices& split : splits) {
       addToPool(split, kPolygonGroup);
       state_.back() = kInMesh;
-      for (const SampleIndex w : split)
+      for (const SampleIndex w : split) {
         ++mesh_degree_[w];
+        touched[w] = 1;
+      }
     }
     ++inserted;
+    }
+    if (inserted != inserted_before)
+      rebuildIncidence();
+    if (inserted == inserted_before && deferred.size() == pending.size())
+      break;
+    pending.swap(deferred);
   }
   report_.inserted_samples = inserted;
-  if (inserted > 0)
-    rebuildIncidence();
 }
 
 // Closed components face outward: flip any whose signed volume is negative.

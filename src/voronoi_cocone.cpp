@@ -579,6 +579,31 @@ VoronoiCocone::compute(const std::vector<Eigen::Vector3d>& points)
   if (n < 4)
     return fail(Status::too_few_points,
                 "need at least 4 points for a 3D Voronoi diagram, got " + std::to_string(n));
+  // Decide the dimension on the points as given, with exact predicates: translating
+  // them to their centroid rounds each coordinate, which can lift exactly coplanar
+  // points off their plane by 1e-15 and hide the degeneracy from the triangulation.
+  {
+    const auto at = [&](std::size_t i) {
+      return Point(points[i].x(), points[i].y(), points[i].z());
+    };
+    std::size_t second = 1, third = 0, fourth = 0;
+    while (second < n && at(second) == at(0))
+      ++second;
+    for (std::size_t i = second + 1; i < n && third == 0; ++i)
+      if (!CGAL::collinear(at(0), at(second), at(i)))
+        third = i;
+    for (std::size_t i = third + 1; third != 0 && i < n && fourth == 0; ++i)
+      if (CGAL::orientation(at(0), at(second), at(third), at(i)) != CGAL::COPLANAR)
+        fourth = i;
+    if (second == n)
+      return fail(Status::too_few_points, "need at least 4 distinct points, got 1");
+    if (third == 0)
+      return fail(Status::degenerate_dimension,
+                  "all points are collinear: no 3D Voronoi cell to measure");
+    if (fourth == 0)
+      return fail(Status::degenerate_dimension,
+                  "all points are coplanar: no 3D Voronoi cell to measure");
+  }
 
   using Clock = std::chrono::steady_clock;
   const auto seconds_since = [](Clock::time_point start) {

@@ -198,8 +198,11 @@ TEST_P(Shapes, PointsLieOnTheSurface)
     sum += d;
   }
   EXPECT_LE(worst, tolerance);
-  // The jitter is there: points are not exactly on the surface.
-  EXPECT_GT(sum / s.points.size(), 1e-7 * diagonal(s));
+  // The jitter is there: points are not exactly on the surface (its amplitude is
+  // documented in shapes.h; uniform, so the mean distance is about half of it).
+  const double amplitude =
+      std::min(1e-5 * diagonal(s), 1e-3 * s.spacing() * s.spacing() / diagonal(s));
+  EXPECT_GT(sum / s.points.size(), 0.1 * amplitude);
 }
 
 TEST_P(Shapes, NormalsAreUnitAndNormal)

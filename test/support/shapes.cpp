@@ -397,7 +397,13 @@ sampleSurface(SampledShape& shape,
     lo = lo.cwiseMin(points[i]);
     hi = hi.cwiseMax(points[i]);
   }
-  const double jitter = 1e-5 * (hi - lo).norm();
+  // Voronoi vertices deep inside a shape sit where many bisector planes meet at small
+  // angles, so a jitter e moves them by about e * diagonal / spacing^2: keep that
+  // small (it would otherwise bias the heights the tests compare with the feature
+  // size), while still far above rounding so that no four points are co-spherical.
+  const double diagonal = (hi - lo).norm();
+  const double spacing = std::sqrt(weighted_area / static_cast<double>(n));
+  const double jitter = std::min(1e-5 * diagonal, 1e-3 * spacing * spacing / diagonal);
   shape.points.reserve(n);
   shape.normals.reserve(n);
   for (const std::uint32_t i : kept) {

@@ -50,9 +50,10 @@ struct SampledShape
 
 // Every generator returns exactly n points, deterministic for a given seed, spread as
 // blue noise (well separated, no large gaps: the largest empty disc on the surface is
-// at most about 1.5 spacings), and moved off the surface by a tiny normal jitter of
-// 1e-5 of the bounding-box diagonal so that no four points are exactly co-spherical
-// (exact samples of analytic surfaces make Delaunay slow and degenerate).
+// at most about 1.5 spacings), and moved off the surface by a tiny normal jitter (at
+// most 1e-5 of the bounding-box diagonal, and 1e-3 spacing^2 / diagonal: small enough
+// not to move the Voronoi vertices deep inside) so that no four points are exactly
+// co-spherical (exact samples of analytic surfaces make Delaunay slow and degenerate).
 
 /** Unit sphere centred at the origin. */
 SampledShape

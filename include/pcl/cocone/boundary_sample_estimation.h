@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace pcl {
@@ -157,6 +158,14 @@ public:
   {
     return ratios_;
   }
+  /** \brief Why the last run produced no result (one line, e.g. "all points are
+   * coplanar: no 3D Voronoi cell to measure"); empty after a successful run. The same
+   * text went to PCL_ERROR. */
+  const std::string&
+  getErrorMessage() const
+  {
+    return error_message_;
+  }
   /** \brief Number of boundary samples among the output rows. */
   std::size_t
   getNumberOfBoundarySamples() const
@@ -195,6 +204,7 @@ private:
   std::vector<float> radii_;
   std::vector<float> ratios_;
   std::size_t boundary_count_ = 0;
+  std::string error_message_;
 };
 
 } // namespace pcl

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace pcl {
@@ -197,6 +198,14 @@ public:
   {
     return unused_indices_;
   }
+  /** \brief Why the last run produced no result (one line, e.g. "all points are
+   * coplanar: no 3D Voronoi cell to measure"); empty after a successful run. The same
+   * text went to PCL_ERROR. */
+  const std::string&
+  getErrorMessage() const
+  {
+    return error_message_;
+  }
   /** \brief The core's report of the last run (sample indices are positions among the
    * finite selected points). */
   const cocone::ReconstructionReport&
@@ -232,6 +241,7 @@ private:
   std::vector<std::uint8_t> boundary_samples_;
   std::vector<pcl::Vertices> boundary_loops_;
   pcl::Indices unused_indices_;
+  std::string error_message_;
 };
 
 } // namespace pcl

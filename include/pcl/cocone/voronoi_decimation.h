@@ -5,6 +5,7 @@
 #include <pcl/filters/filter_indices.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 namespace pcl {
@@ -106,6 +107,15 @@ public:
     return removal_levels_;
   }
 
+  /** \brief Why the last run produced no result (one line, e.g. "all points are
+   * coplanar: no 3D Voronoi cell to measure"); empty after a successful run. The same
+   * text went to PCL_ERROR. */
+  const std::string&
+  getErrorMessage() const
+  {
+    return error_message_;
+  }
+
 protected:
   using FilterIndices<PointT>::negative_;
   using FilterIndices<PointT>::extract_removed_indices_;
@@ -126,6 +136,7 @@ private:
   double cocone_angle_ = M_PI / 8;
   unsigned threads_ = 0;
   std::vector<double> removal_levels_;
+  std::string error_message_;
 };
 
 } // namespace pcl

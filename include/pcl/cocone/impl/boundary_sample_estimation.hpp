@@ -64,16 +64,20 @@ template <typename PointInT, typename PointOutT>
 bool
 BoundarySampleEstimation<PointInT, PointOutT>::initCompute()
 {
+  error_message_.clear();
   if (!PCLBase<PointInT>::initCompute()) {
+    error_message_ = "no input cloud or invalid indices";
     PCL_ERROR("[pcl::%s::compute] No input cloud or invalid indices.\n",
               getClassName().c_str());
     return false;
   }
   if (input_->empty()) {
+    error_message_ = "the input cloud is empty";
     PCL_ERROR("[pcl::%s::compute] The input cloud is empty.\n", getClassName().c_str());
     return false;
   }
   if (surface_ && surface_ != input_) {
+    error_message_ = "setSearchSurface is not supported";
     PCL_ERROR("[pcl::%s::compute] setSearchSurface is not supported: the Voronoi cells "
               "are those of the input cloud.\n",
               getClassName().c_str());
@@ -105,6 +109,7 @@ BoundarySampleEstimation<PointInT, PointOutT>::computeFeature(PointCloudOut& out
 {
   const std::size_t rows = indices_->size();
   clearResults(rows);
+  error_message_.clear();
 
   // The diagram of every finite input point; the rows are the indices.
   pcl::Indices all(input_->size());
@@ -120,8 +125,8 @@ BoundarySampleEstimation<PointInT, PointOutT>::computeFeature(PointCloudOut& out
   voronoi.setCoconeAngle(cocone_angle_);
   voronoi.setNumberOfThreads(threads_);
   if (voronoi.compute(samples) != cocone::Status::ok) {
-    PCL_ERROR("[pcl::%s::compute] %s.\n", getClassName().c_str(),
-              voronoi.errorMessage().c_str());
+    error_message_ = voronoi.errorMessage();
+    PCL_ERROR("[pcl::%s::compute] %s.\n", getClassName().c_str(), error_message_.c_str());
     output.width = output.height = 0;
     output.clear();
     clearResults(0);

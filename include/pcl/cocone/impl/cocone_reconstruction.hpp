@@ -69,6 +69,7 @@ void
 CoconeReconstruction<PointInT>::performReconstruction(std::vector<pcl::Vertices>& polygons)
 {
   polygons.clear();
+  error_message_.clear();
   report_ = cocone::ReconstructionReport();
   boundary_samples_.assign(input_->size(), 0);
   boundary_loops_.clear();
@@ -85,8 +86,9 @@ CoconeReconstruction<PointInT>::performReconstruction(std::vector<pcl::Vertices>
   voronoi.setCoconeAngle(cocone_angle_);
   voronoi.setNumberOfThreads(threads_);
   if (voronoi.compute(samples) != cocone::Status::ok) {
+    error_message_ = voronoi.errorMessage();
     PCL_ERROR("[pcl::%s::reconstruct] %s.\n", getClassName().c_str(),
-              voronoi.errorMessage().c_str());
+              error_message_.c_str());
     unused_indices_ = *indices_;
     return;
   }

@@ -41,6 +41,7 @@ bool
 VoronoiDecimation<PointT>::decimate(double rho)
 {
   removal_levels_.assign(input_->size(), std::numeric_limits<double>::quiet_NaN());
+  error_message_.clear();
   std::vector<Eigen::Vector3d> samples;
   pcl::Indices cloud_index;
   cocone::gatherFiniteSamples(*input_, *indices_, samples, cloud_index);
@@ -51,8 +52,8 @@ VoronoiDecimation<PointT>::decimate(double rho)
   cocone::DecimationLevels levels;
   if (voronoi.compute(samples) != cocone::Status::ok ||
       voronoi.decimate(rho, levels) != cocone::Status::ok) {
-    PCL_ERROR("[pcl::%s::filter] %s.\n", getClassName().c_str(),
-              voronoi.errorMessage().c_str());
+    error_message_ = voronoi.errorMessage();
+    PCL_ERROR("[pcl::%s::filter] %s.\n", getClassName().c_str(), error_message_.c_str());
     return false;
   }
   for (std::size_t s = 0; s < samples.size(); ++s)

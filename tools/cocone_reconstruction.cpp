@@ -1,0 +1,173 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// pcl_cocone_reconstruction: reconstructs an oriented 2-manifold (with boundary)
+// through the samples with COCONE and boundary detection (Dey et al. 2001, section 3.4)
+// and writes it as PLY, VTK or OBJ, then reports the mesh's topology so that a user can
+// tell at once whether the surface came out closed and manifold.
+#include "tool_common.h"
+
+#include <pcl/cocone/cocone_reconstruction.h>
+#include <pcl/cocone/mesh_topology.h>
+#include <pcl/common/point_tests.h>
+#include <pcl/console/print.h>
+
+#include <array>
+#include <limits>
+#include <vector>
+
+using namespace pcl::cocone::tools;
+using pcl::cocone::TriangleIndices;
+
+namespace {
+
+CommandLine
+commandLine()
+{
+  return CommandLine(
+      {"pcl_cocone_reconstruction",
+       "reconstructs a triangle mesh through the samples with COCONE and boundary "
+       "detection (Dey et al., IEEE Visualization 2001): closed surfaces come out "
+       "closed, boundaries and undersampled parts stay open.",
+       "OUTPUT.{ply,vtk,obj}",
+       {".ply", ".vtk", ".obj"},
+       "the mesh: binary PLY, legacy ASCII VTK or OBJ; vertex i is input point i "
+       "(points with a NaN coordinate are left out and the ids after them renumbered)"},
+      {coconeAngleOption(),
+       ratioBoundOption(0.99, "BOUNDARY's ratio bound r_p/h_p <= R for flat samples"),
+       normalAngleOption(),
+       {"-boundary_ratio", ValueKind::real, "B",
+        "a hole larger than B local sample spacings is a true boundary and stays open; "
+        "smaller holes are stitched; raise it to close a scan's cut",
+        2, "", Range{0.5, 1000, false, false, "[0.5, 1000]"}},
+       flagOption("-no_boundary",
+        "no boundary detection: the original COCONE, for densely sampled closed "
+        "smooth surfaces only"),
+       flagOption("-no_stitch", "leave every hole open"),
+       threadsOption(),
+       verboseOption()});
+}
+
+std::vector<pcl::Vertices>
+reconstruct(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLine& cmd)
+{
+  pcl::CoconeReconstruction<pcl::PointXYZ> cocone;
+  cocone.setInputCloud(xyz);
+  cocone.setCoconeAngle(cmd.value("-theta"));
+  cocone.setRatioBound(cmd.value("-rho"));
+  cocone.setNormalAngle(cmd.value("-alpha"));
+  cocone.setTrueBoundaryRatio(cmd.value("-boundary_ratio"));
+  cocone.setBoundaryDetection(!cmd.flag("-no_boundary"));
+  cocone.setHoleStitching(!cmd.flag("-no_stitch"));
+  cocone.setNumberOfThreads(cmd.count("-threads"));
+  if (cmd.verbose())
+    printDetail("Parameters",
+                "theta " + formatNumber(cocone.getCoconeAngle()) + " rad, rho " +
+                    formatNumber(cocone.getRatioBound()) + ", alpha " +
+                    formatNumber(cocone.getNormalAngle()) + " rad, boundary ratio " +
+                    formatNumber(cocone.getTrueBoundaryRatio()) +
+                    ", boundary detection " +
+                    (cocone.getBoundaryDetection() ? "on" : "off") + ", stitching " +
+                    (cocone.getHoleStitching() ? "on" : "off"));
+
+  std::vector<pcl::Vertices> polygons;
+  computeStage("the COCONE surface", "triangles", [&]() -> std::optional<std::size_t> {
+    cocone.reconstruct(polygons);
+    // Coplanar input and the like give no polygon; so would a cloud without surface.
+    if (polygons.empty())
+      return std::nullopt;
+    return polygons.size();
+  });
+
+  if (cmd.verbose()) {
+    const pcl::cocone::ReconstructionReport& report = cocone.getReport();
+    std::size_t boundary_samples = 0;
+    for (const std::uint8_t flag : cocone.getBoundarySamples())
+      boundary_samples += flag;
+    printDetail("Boundary samples", std::to_string(boundary_samples));
+    printDetail("Candidate triangles",
+                std::to_string(cocone.getNumberOfCandidateTriangles()));
+    printDetail("Lid triangles removed",
+                std::to_string(cocone.getNumberOfLidTriangles()));
+    printDetail("Pruned triangles",
+                std::to_string(cocone.getNumberOfPrunedTriangles()));
+    printDetail("Walked triangles", std::to_string(report.walked_triangles));
+    printDetail("Removed at pinched vertices",
+                std::to_string(report.pinch_removed_triangles));
+    printDetail("Stitched holes",
+                std::to_string(cocone.getNumberOfStitchedHoles()) + " (" +
+                    std::to_string(cocone.getNumberOfStitchedTriangles()) +
+                    " triangles)");
+    printDetail("Open boundary loops",
+                std::to_string(cocone.getBoundaryLoops().size()));
+    printDetail("Unused points", std::to_string(cocone.getUnusedIndices().size()));
+  }
+  return polygons;
+}
+
+/** The mesh as written: the finite points in input order (a NaN vertex cannot be
+ * written to PLY/OBJ meaningfully), the triangles renumbered to match. */
+struct Mesh
+{
+  std::vector<std::array<float, 3>> vertices;
+  std::vector<TriangleIndices> triangles;
+  std::size_t dropped = 0;
+};
+
+Mesh
+finiteMesh(const pcl::PointCloud<pcl::PointXYZ>& xyz,
+           const std::vector<pcl::Vertices>& polygons)
+{
+  constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+  Mesh mesh;
+  std::vector<std::uint32_t> id(xyz.size(), none);
+  for (std::size_t i = 0; i < xyz.size(); ++i) {
+    if (!pcl::isXYZFinite(xyz[i])) {
+      ++mesh.dropped;
+      continue;
+    }
+    id[i] = static_cast<std::uint32_t>(mesh.vertices.size());
+    mesh.vertices.push_back({xyz[i].x, xyz[i].y, xyz[i].z});
+  }
+  mesh.triangles.reserve(polygons.size());
+  for (const pcl::Vertices& polygon : polygons) {
+    if (polygon.vertices.size() != 3)
+      fail("internal error: the reconstruction returned a polygon that is no triangle");
+    TriangleIndices t;
+    for (int k = 0; k < 3; ++k) {
+      const pcl::index_t v = polygon.vertices[k];
+      if (v < 0 || static_cast<std::size_t>(v) >= id.size() || id[v] == none)
+        fail("internal error: a triangle uses a point that is not finite");
+      t[k] = id[v];
+    }
+    mesh.triangles.push_back(t);
+  }
+  return mesh;
+}
+
+} // namespace
+
+int
+main(int argc, char** argv)
+{
+  CommandLine cmd = commandLine();
+  cmd.parse(argc, argv);
+
+  const pcl::PointCloud<pcl::PointXYZ>::Ptr xyz =
+      toXyz(loadCloud(cmd.input(), cmd.verbose()));
+  const Mesh mesh = finiteMesh(*xyz, reconstruct(xyz, cmd));
+  if (mesh.dropped > 0)
+    pcl::console::print_info("note: %zu non-finite input points dropped; vertex ids "
+                             "renumbered\n",
+                             mesh.dropped);
+  saveMesh(cmd.output(), mesh.vertices, mesh.triangles);
+
+  const pcl::cocone::MeshTopology topology =
+      pcl::cocone::analyzeTriangleMesh(mesh.triangles);
+  pcl::console::print_info(
+      "vertices used %zu, triangles %zu, boundary loops %zu, Euler characteristic %ld, "
+      "closed %s, manifold %s\n",
+      topology.vertices, topology.triangles, topology.boundary_loops.size(),
+      topology.eulerCharacteristic(), topology.isClosed() ? "yes" : "no",
+      topology.isManifold() ? "yes" : "no");
+  return 0;
+}

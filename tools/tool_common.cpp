@@ -1,0 +1,805 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tool_common.h"
+
+#include <pcl/cocone/point_io.h>
+#include <pcl/common/io.h>
+#include <pcl/console/print.h>
+#include <pcl/conversions.h>
+#include <pcl/io/pcd_io.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <iostream>
+#include <system_error>
+
+namespace pcl {
+namespace cocone {
+namespace tools {
+
+namespace {
+
+namespace fs = std::filesystem;
+using pcl::console::print_error;
+using pcl::console::print_highlight;
+using pcl::console::print_info;
+using pcl::console::print_value;
+
+// Process-wide console state: fail() must know whether a stage line is open on stdout,
+// and the name to put in front of its message.
+std::string program_name = "error";
+bool stage_open = false;
+bool verbose_stages = false;
+
+constexpr std::size_t help_column = 24; // where option descriptions start
+constexpr std::size_t help_width = 88;
+
+/** \a text with control characters replaced, so that it fits on one line. */
+std::string
+oneLine(std::string text)
+{
+  for (char& c : text)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      c = (c == '\t') ? ' ' : '?';
+  return text;
+}
+
+std::string
+inQuotes(const std::string& text)
+{
+  return "'" + text + "'";
+}
+
+std::string
+lowerCase(std::string text)
+{
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+/** Removes ANSI colour sequences (ESC [ ... letter): PCL colours its messages when the
+ * stream was a terminal the first time it printed, even if it no longer is. */
+std::string
+withoutColours(const std::string& text)
+{
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '\x1b' && i + 1 < text.size() && text[i + 1] == '[') {
+      i += 2;
+      while (i < text.size() && !std::isalpha(static_cast<unsigned char>(text[i])))
+        ++i;
+      continue;
+    }
+    out += text[i];
+  }
+  return out;
+}
+
+// Spaces that printWrapped must not break at, e.g. inside "(0, 10]".
+constexpr char kGlue = '\x1f';
+
+std::string
+unbreakable(std::string text)
+{
+  std::replace(text.begin(), text.end(), ' ', kGlue);
+  return text;
+}
+
+/** Prints \a text from column \a indent on, wrapped at help_width; the first line
+ * continues wherever the cursor is (\a column). */
+void
+printWrapped(const std::string& text, std::size_t column, std::size_t indent)
+{
+  std::string line;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find(' ', start);
+    if (end == std::string::npos)
+      end = text.size();
+    const std::string word = text.substr(start, end - start);
+    if (!line.empty() && column + line.size() + 1 + word.size() > help_width) {
+      std::replace(line.begin(), line.end(), kGlue, ' ');
+      print_info("%s\n%s", line.c_str(), std::string(indent, ' ').c_str());
+      column = indent;
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+    start = end + 1;
+  }
+  std::replace(line.begin(), line.end(), kGlue, ' ');
+  print_info("%s\n", line.c_str());
+}
+
+std::string
+defaultText(const Option& option)
+{
+  if (!option.default_text.empty())
+    return option.default_text;
+  if (option.kind == ValueKind::flag)
+    return "off";
+  return formatNumber(option.default_value);
+}
+
+/** The value \a text of \a option, checked; fails with the option's name otherwise. */
+double
+parseValue(const Option& option, const std::string& text)
+{
+  double value = 0;
+  if (option.kind == ValueKind::integer) {
+    long long number = 0;
+    const char* last = text.data() + text.size();
+    const auto [end, ec] = std::from_chars(text.data(), last, number);
+    if (text.empty() || ec != std::errc() || end != last)
+      fail(option.name + ": " + inQuotes(text) +
+           " is not an integer (expected an integer in " + option.range.text + ")");
+    value = static_cast<double>(number);
+  }
+  else {
+    // strtod rather than PCL's parse_argument, which takes "abc" for 0 and "1x" for 1.
+    char* end = nullptr;
+    errno = 0;
+    value = std::strtod(text.c_str(), &end);
+    const bool whole = !text.empty() &&
+                       !std::isspace(static_cast<unsigned char>(text[0])) && end &&
+                       *end == '\0';
+    if (!whole || errno == ERANGE || !std::isfinite(value))
+      fail(option.name + ": " + inQuotes(text) +
+           " is not a number (expected a value in " + option.range.text + ")");
+  }
+  if (!option.range.contains(value))
+    fail(option.name + ": " + text + " is outside the valid range " +
+         option.range.text);
+  return value;
+}
+
+std::string
+fieldList(const pcl::PCLPointCloud2& cloud)
+{
+  std::string list;
+  for (const pcl::PCLPointField& field : cloud.fields)
+    if (field.name != "_")
+      list += (list.empty() ? "" : " ") + field.name;
+  return list;
+}
+
+// --- binary PLY ------------------------------------------------------------------
+
+/** Appends the 4 bytes of \a bits least significant first, whatever the host order. */
+void
+appendLittleEndian(std::string& out, std::uint32_t bits)
+{
+  for (int shift = 0; shift < 32; shift += 8)
+    out += static_cast<char>((bits >> shift) & 0xffu);
+}
+
+void
+appendFloat(std::string& out, float value)
+{
+  std::uint32_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  appendLittleEndian(out, bits);
+}
+
+/** Appends the shortest text that reads back as the same float. */
+void
+appendText(std::string& out, float value)
+{
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, result.ptr);
+}
+
+void
+appendText(std::string& out, std::uint64_t value)
+{
+  char buffer[24];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, result.ptr);
+}
+
+std::string
+meshAsPly(const std::vector<std::array<float, 3>>& vertices,
+          const std::vector<TriangleIndices>& triangles)
+{
+  std::string out = "ply\nformat binary_little_endian 1.0\n"
+                    "comment written by " + program_name + "\n" +
+                    "element vertex " + std::to_string(vertices.size()) + "\n" +
+                    "property float x\nproperty float y\nproperty float z\n" +
+                    "element face " + std::to_string(triangles.size()) + "\n" +
+                    "property list uchar int vertex_indices\nend_header\n";
+  out.reserve(out.size() + 12 * vertices.size() + 13 * triangles.size());
+  for (const auto& v : vertices)
+    for (const float c : v)
+      appendFloat(out, c);
+  for (const TriangleIndices& t : triangles) {
+    out += static_cast<char>(3);
+    for (const std::uint32_t i : t)
+      appendLittleEndian(out, i);
+  }
+  return out;
+}
+
+std::string
+meshAsVtk(const std::vector<std::array<float, 3>>& vertices,
+          const std::vector<TriangleIndices>& triangles)
+{
+  std::string out = "# vtk DataFile Version 3.0\nwritten by " + program_name +
+                    "\nASCII\nDATASET POLYDATA\nPOINTS " +
+                    std::to_string(vertices.size()) + " float\n";
+  for (const auto& v : vertices) {
+    appendText(out, v[0]);
+    out += ' ';
+    appendText(out, v[1]);
+    out += ' ';
+    appendText(out, v[2]);
+    out += '\n';
+  }
+  out += "POLYGONS " + std::to_string(triangles.size()) + " " +
+         std::to_string(4 * triangles.size()) + "\n";
+  for (const TriangleIndices& t : triangles) {
+    out += '3';
+    for (const std::uint32_t i : t) {
+      out += ' ';
+      appendText(out, std::uint64_t{i});
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+std::string
+meshAsObj(const std::vector<std::array<float, 3>>& vertices,
+          const std::vector<TriangleIndices>& triangles)
+{
+  std::string out = "# written by " + program_name + ": " +
+                    std::to_string(vertices.size()) + " vertices, " +
+                    std::to_string(triangles.size()) + " triangles\n";
+  for (const auto& v : vertices) {
+    out += 'v';
+    for (const float c : v) {
+      out += ' ';
+      appendText(out, c);
+    }
+    out += '\n';
+  }
+  for (const TriangleIndices& t : triangles) {
+    out += 'f';
+    for (const std::uint32_t i : t) {
+      out += ' ';
+      appendText(out, std::uint64_t{i} + 1); // OBJ counts from 1
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+/** Writes \a contents to \a path; on failure removes what was written and fails. */
+void
+writeFile(const std::string& path, const std::string& contents)
+{
+  errno = 0;
+  std::FILE* file = std::fopen(path.c_str(), "wb");
+  if (!file)
+    fail("cannot write " + path + ": " + std::strerror(errno));
+  const bool written =
+      std::fwrite(contents.data(), 1, contents.size(), file) == contents.size();
+  const int write_error = errno;
+  // fclose flushes: a full disk may show up only here.
+  const bool closed = std::fclose(file) == 0;
+  if (!written || !closed) {
+    const int error = written ? errno : write_error;
+    std::remove(path.c_str());
+    fail("cannot write " + path + ": " +
+         (error ? std::strerror(error) : "write error"));
+  }
+}
+
+} // namespace
+
+// ---------------------------------------------------------------------------------
+
+void
+fail(const std::string& message)
+{
+  if (stage_open) {
+    print_info("[failed]\n");
+    stage_open = false;
+  }
+  std::fflush(stdout);
+  print_error("%s: %s\n", program_name.c_str(), oneLine(message).c_str());
+  std::exit(EXIT_FAILURE);
+}
+
+std::string
+captureStderr(const std::function<void()>& work)
+{
+  std::fflush(stderr);
+  std::FILE* sink = std::tmpfile();
+  const int saved = sink ? ::dup(STDERR_FILENO) : -1;
+  if (saved < 0 || ::dup2(::fileno(sink), STDERR_FILENO) < 0) {
+    // Without a place to capture to, the messages go through as they are.
+    if (saved >= 0)
+      ::close(saved);
+    if (sink)
+      std::fclose(sink);
+    work();
+    return {};
+  }
+  const auto restore = [&] {
+    std::cerr.flush();
+    std::fflush(stderr);
+    ::dup2(saved, STDERR_FILENO);
+    ::close(saved);
+  };
+  try {
+    work();
+  }
+  catch (...) {
+    restore();
+    std::fclose(sink);
+    throw;
+  }
+  restore();
+
+  std::string captured;
+  std::rewind(sink);
+  char buffer[4096];
+  std::size_t n;
+  while ((n = std::fread(buffer, 1, sizeof buffer, sink)) > 0)
+    captured.append(buffer, n);
+  std::fclose(sink);
+  return withoutColours(captured);
+}
+
+void
+replayStderr(const std::string& captured)
+{
+  if (!captured.empty()) {
+    std::fwrite(captured.data(), 1, captured.size(), stderr);
+    std::fflush(stderr);
+  }
+}
+
+std::string
+reasonFrom(const std::string& captured, const std::string& fallback)
+{
+  std::string line;
+  std::size_t end = captured.size();
+  while (line.empty() && end > 0) {
+    const std::size_t start = captured.rfind('\n', end - 1);
+    const std::size_t first = (start == std::string::npos) ? 0 : start + 1;
+    line = captured.substr(first, end - first);
+    line.erase(0, line.find_first_not_of(" \t\r"));
+    line.erase(line.find_last_not_of(" \t\r") + 1);
+    end = (start == std::string::npos) ? 0 : start;
+  }
+  if (line.empty())
+    return fallback;
+  // "[pcl::CoconeReconstruction::reconstruct] all points are coplanar." -> the reason.
+  if (line.front() == '[') {
+    const std::size_t close = line.find("] ");
+    if (close != std::string::npos)
+      line.erase(0, close + 2);
+  }
+  if (!line.empty() && line.back() == '.')
+    line.pop_back();
+  return line.empty() ? fallback : line;
+}
+
+// ---------------------------------------------------------------------------------
+
+bool
+Range::contains(double value) const
+{
+  const bool above = low_open ? value > low : value >= low;
+  const bool below = high_open ? value < high : value <= high;
+  return above && below;
+}
+
+const Range&
+ratioBoundRange()
+{
+  static const Range range{0, 10, true, false, "(0, 10]"};
+  return range;
+}
+
+const Range&
+coconeAngleRange()
+{
+  static const Range range{0, M_PI / 2, true, true, "(0, pi/2)"};
+  return range;
+}
+
+const Range&
+normalAngleRange()
+{
+  static const Range range{0, M_PI / 2, true, false, "(0, pi/2]"};
+  return range;
+}
+
+Option
+ratioBoundOption(double default_value, const std::string& help)
+{
+  return {"-rho", ValueKind::real, "R", help, default_value, "", ratioBoundRange()};
+}
+
+Option
+coconeAngleOption()
+{
+  return {"-theta", ValueKind::real, "T",
+          "cocone angle in radians: the cocone of a sample is the part of its Voronoi "
+          "cell within T of the plane orthogonal to its pole vector",
+          M_PI / 8, "pi/8 = 0.3927", coconeAngleRange()};
+}
+
+Option
+normalAngleOption()
+{
+  return {"-alpha", ValueKind::real, "A",
+          "largest angle in radians between the pole lines of neighbouring flat "
+          "samples; smaller values flag more samples near curved or sharp regions",
+          M_PI / 6, "pi/6 = 0.5236", normalAngleRange()};
+}
+
+Option
+threadsOption()
+{
+  return {"-threads", ValueKind::integer, "N", "number of threads", 0,
+          "0 = every core", Range{0, 4096, false, false, "[0, 4096]"}};
+}
+
+Option
+flagOption(const std::string& name, const std::string& help)
+{
+  Option option;
+  option.name = name;
+  option.help = help;
+  return option;
+}
+
+Option
+verboseOption()
+{
+  return flagOption("-v",
+                    "verbose: parameters, the time of every stage and the algorithms' "
+                    "statistics");
+}
+
+// ---------------------------------------------------------------------------------
+
+CommandLine::CommandLine(ToolDescription tool, std::vector<Option> options)
+: tool_(std::move(tool)), options_(std::move(options))
+{
+  program_name = tool_.program;
+  for (const Option& option : options_)
+    values_.push_back(option.default_value);
+  given_.assign(options_.size(), false);
+}
+
+void
+CommandLine::parse(int argc, char** argv)
+{
+  // Help wins over everything else on the line, as in PCL's tools.
+  for (int i = 1; i < argc; ++i)
+    if (std::strcmp(argv[i], "-h") == 0 || std::strcmp(argv[i], "--help") == 0) {
+      printHelp();
+      std::exit(EXIT_SUCCESS);
+    }
+
+  const auto find = [this](const std::string& name) {
+    return std::find_if(options_.begin(), options_.end(),
+                        [&](const Option& o) { return o.name == name; });
+  };
+  std::vector<std::string> positional;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg.size() < 2 || arg[0] != '-') {
+      positional.push_back(arg);
+      continue;
+    }
+    // Every dash word must be an option: pcl::console::parse_argument looks only for
+    // the names it is asked about, so a typo like -theat is silently ignored there.
+    const auto it = find(arg);
+    if (it == options_.end())
+      fail("unknown option " + inQuotes(arg) + " (see " + tool_.program + " -h)");
+    const std::size_t k = static_cast<std::size_t>(it - options_.begin());
+    if (given_[k])
+      fail(arg + " is given more than once");
+    given_[k] = true;
+    if (it->kind == ValueKind::flag)
+      continue;
+    if (i + 1 >= argc || find(argv[i + 1]) != options_.end())
+      fail(arg + " needs a value: " + it->argument + " in " + it->range.text);
+    values_[k] = parseValue(*it, argv[++i]);
+  }
+
+  if (positional.size() < 2)
+    fail("missing arguments: expected INPUT " + tool_.output + " (see " +
+         tool_.program + " -h)");
+  if (positional.size() > 2)
+    fail("unexpected argument " + inQuotes(positional[2]) + ": expected only INPUT " +
+         tool_.output);
+  input_ = positional[0];
+  output_ = positional[1];
+
+  // The output is checked now rather than after minutes of computing.
+  const std::string extension = outputExtension();
+  if (std::find(tool_.output_extensions.begin(), tool_.output_extensions.end(),
+                extension) == tool_.output_extensions.end()) {
+    std::string known;
+    for (const std::string& e : tool_.output_extensions)
+      known += (known.empty() ? "" : ", ") + e;
+    fail("unsupported output format " + inQuotes(output_) + " (expected " + known +
+         ")");
+  }
+  std::error_code ec;
+  const fs::path folder = fs::path(output_).parent_path();
+  if (!folder.empty() && !fs::is_directory(folder, ec))
+    fail("cannot write " + output_ + ": folder " + folder.string() + " does not exist");
+  if (fs::is_directory(output_, ec))
+    fail("cannot write " + output_ + ": it is a folder");
+
+  if (verbose()) {
+    verbose_stages = true;
+    // The classes report their statistics with PCL_DEBUG.
+    pcl::console::setVerbosityLevel(pcl::console::L_DEBUG);
+  }
+}
+
+std::string
+CommandLine::outputExtension() const
+{
+  const std::string extension = fs::path(output_).extension().string();
+  return lowerCase(extension);
+}
+
+const Option&
+CommandLine::option(const std::string& name) const
+{
+  for (const Option& o : options_)
+    if (o.name == name)
+      return o;
+  // A tool asking for an option it did not declare is a programming error.
+  fail("internal error: no option " + name);
+}
+
+double
+CommandLine::value(const std::string& name) const
+{
+  const Option& o = option(name);
+  return values_[static_cast<std::size_t>(&o - options_.data())];
+}
+
+unsigned
+CommandLine::count(const std::string& name) const
+{
+  return static_cast<unsigned>(value(name));
+}
+
+bool
+CommandLine::flag(const std::string& name) const
+{
+  const Option& o = option(name);
+  return given_[static_cast<std::size_t>(&o - options_.data())];
+}
+
+void
+CommandLine::printHelp() const
+{
+  print_info("%s: ", tool_.program.c_str());
+  printWrapped(tool_.purpose, tool_.program.size() + 2, 2);
+  print_info("\nSyntax is: %s INPUT %s <options>\n", tool_.program.c_str(),
+             tool_.output.c_str());
+  const auto item = [](const std::string& name, const std::string& text) {
+    std::string head = "  " + name;
+    if (head.size() + 1 < help_column)
+      head.resize(help_column, ' ');
+    else
+      head += ' ';
+    print_info("%s", head.c_str());
+    printWrapped(text, head.size(), help_column);
+  };
+  item("INPUT", "the samples: .pcd .ply .obj .off .xyz .pts .txt (a mesh's vertices "
+                "are the samples; NaN points are skipped)");
+  item(tool_.output, tool_.output_help);
+  print_info("\nwhere options are:\n");
+  for (const Option& o : options_) {
+    std::string text = o.help + " (default " + unbreakable(defaultText(o));
+    if (o.kind != ValueKind::flag)
+      text += "; valid " + unbreakable(o.range.text);
+    item(o.name + (o.argument.empty() ? "" : " " + o.argument), text + ")");
+  }
+  item("-h, --help", "print this help and exit");
+  print_info("\nAngles are in radians, as everywhere in PCL (pi/8 = 0.3927, pi/6 = "
+             "0.5236, pi/2 = 1.5708).\n");
+}
+
+// ---------------------------------------------------------------------------------
+
+Stage::Stage(const std::string& action, const std::string& object)
+{
+  print_highlight("%s ", action.c_str());
+  print_value("%s", object.c_str());
+  print_info(verbose_stages ? " ...\n" : " ");
+  std::fflush(stdout);
+  stage_open = !verbose_stages;
+  timer_.tic();
+}
+
+void
+Stage::done(std::size_t count, const std::string& unit)
+{
+  print_info("[done, ");
+  print_value("%g", timer_.toc());
+  print_info(" ms : ");
+  print_value("%zu", count);
+  print_info(" %s]\n", unit.c_str());
+  stage_open = false;
+}
+
+std::size_t
+computeStage(const std::string& what,
+             const std::string& unit,
+             const std::function<std::optional<std::size_t>()>& work)
+{
+  Stage stage("Computing", what);
+  std::optional<std::size_t> count;
+  const std::string captured = captureStderr([&] { count = work(); });
+  if (!count)
+    fail("computing " + what + " failed: " + reasonFrom(captured, "empty result"));
+  stage.done(*count, unit);
+  replayStderr(captured);
+  return *count;
+}
+
+void
+printDetail(const std::string& label, const std::string& value)
+{
+  print_info("  %s: ", label.c_str());
+  print_value("%s\n", value.c_str());
+}
+
+std::string
+formatNumber(double value, int digits)
+{
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+  return buffer;
+}
+
+std::string
+formatPercent(std::size_t part, std::size_t whole)
+{
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.1f",
+                whole ? 100.0 * static_cast<double>(part) / static_cast<double>(whole)
+                      : 0.0);
+  return buffer;
+}
+
+// ---------------------------------------------------------------------------------
+
+pcl::PCLPointCloud2
+loadCloud(const std::string& path, bool verbose)
+{
+  Stage stage("Loading", path);
+  pcl::PCLPointCloud2 cloud;
+  std::string error;
+  bool loaded = false;
+  const std::string captured =
+      captureStderr([&] { loaded = loadPointSamples(path, cloud, &error); });
+  if (!loaded)
+    fail(error.empty() ? reasonFrom(captured, "cannot read " + path) : error);
+  stage.done(pointCount(cloud), "points");
+  replayStderr(captured);
+  if (verbose)
+    printDetail("Available dimensions", fieldList(cloud));
+  return cloud;
+}
+
+pcl::PointCloud<pcl::PointXYZ>::Ptr
+toXyz(const pcl::PCLPointCloud2& cloud)
+{
+  auto xyz = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  pcl::fromPCLPointCloud2(cloud, *xyz);
+  return xyz;
+}
+
+std::size_t
+pointCount(const pcl::PCLPointCloud2& cloud)
+{
+  return static_cast<std::size_t>(cloud.width) * cloud.height;
+}
+
+pcl::PCLPointCloud2
+withoutFields(const pcl::PCLPointCloud2& cloud, const std::vector<std::string>& names)
+{
+  const auto dropped = [&](const pcl::PCLPointField& f) {
+    return f.name == "_" ||
+           std::find(names.begin(), names.end(), f.name) != names.end();
+  };
+  if (std::none_of(cloud.fields.begin(), cloud.fields.end(), dropped))
+    return cloud;
+
+  pcl::PCLPointCloud2 out;
+  out.header = cloud.header;
+  out.width = cloud.width;
+  out.height = cloud.height;
+  out.is_bigendian = cloud.is_bigendian;
+  out.is_dense = cloud.is_dense;
+  std::vector<const pcl::PCLPointField*> kept;
+  for (const pcl::PCLPointField& f : cloud.fields)
+    if (!dropped(f)) {
+      kept.push_back(&f);
+      pcl::PCLPointField packed = f;
+      packed.offset = out.point_step;
+      out.fields.push_back(packed);
+      out.point_step += f.count * pcl::getFieldSize(f.datatype);
+    }
+  out.row_step = out.point_step * out.width;
+  const std::size_t n = pointCount(cloud);
+  out.data.resize(n * out.point_step);
+  for (std::size_t p = 0; p < n; ++p)
+    for (std::size_t k = 0; k < kept.size(); ++k) {
+      const pcl::PCLPointField& from = *kept[k];
+      std::memcpy(&out.data[p * out.point_step + out.fields[k].offset],
+                  &cloud.data[p * cloud.point_step + from.offset],
+                  from.count * pcl::getFieldSize(from.datatype));
+    }
+  return out;
+}
+
+void
+saveCloud(const std::string& path, const pcl::PCLPointCloud2& cloud)
+{
+  Stage stage("Saving", path);
+  // PCL's PCDWriter::writeBinary creates files with mode 0600, writes through mmap (a
+  // full disk gives "Error during write ()!" without the reason, or SIGBUS), throws
+  // when it cannot open the file and logs its locking at debug level. Its header with
+  // the data written here is the same file, made with the user's umask and failing
+  // with the system's reason.
+  if (cloud.data.size() != pointCount(cloud) * cloud.point_step)
+    fail("internal error: the cloud for " + path + " has an inconsistent data size");
+  std::string contents = pcl::PCDWriter().generateHeaderBinary(
+      cloud, Eigen::Vector4f::Zero(), Eigen::Quaternionf::Identity());
+  contents += "DATA binary\n";
+  contents.append(reinterpret_cast<const char*>(cloud.data.data()), cloud.data.size());
+  writeFile(path, contents);
+  stage.done(pointCount(cloud), "points");
+}
+
+void
+saveMesh(const std::string& path,
+         const std::vector<std::array<float, 3>>& vertices,
+         const std::vector<TriangleIndices>& triangles)
+{
+  Stage stage("Saving", path);
+  const std::string extension = lowerCase(fs::path(path).extension().string());
+  std::string contents;
+  if (extension == ".ply")
+    contents = meshAsPly(vertices, triangles);
+  else if (extension == ".vtk")
+    contents = meshAsVtk(vertices, triangles);
+  else if (extension == ".obj")
+    contents = meshAsObj(vertices, triangles);
+  else
+    fail("unsupported mesh format " + inQuotes(path) + " (expected .ply, .vtk, .obj)");
+  writeFile(path, contents);
+  stage.done(triangles.size(), "triangles");
+}
+
+} // namespace tools
+} // namespace cocone
+} // namespace pcl
