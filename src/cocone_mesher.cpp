@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <unordered_map>
 
 namespace pcl {
 namespace cocone {
@@ -17,8 +18,8 @@ namespace cocone {
 bool
 isValid(const ReconstructionParameters& parameters)
 {
-  return isValid(parameters.boundary) && parameters.true_boundary_ratio >= 0.5 &&
-         parameters.true_boundary_ratio <= 1000;
+  return isValid(parameters.boundary) && parameters.true_boundary_ratio >= 0.5
+         && parameters.true_boundary_ratio <= 1000;
 }
 
 namespace {
@@ -26,6 +27,7 @@ namespace {
 using Vector = Eigen::Vector3d;
 
 constexpr std::uint32_t kCoconeGroup = 0;
+constexpr std::uint32_t kNoTriangle = std::numeric_limits<std::uint32_t>::max();
 // Triangles of polygon fills (not Delaunay triangles): never offered to a walk.
 constexpr std::uint32_t kPolygonGroup = std::numeric_limits<std::uint32_t>::max();
 // Loops longer than this are not filled as polygons (O(m^3) time, O(m^2) memory).
@@ -57,39 +59,33 @@ circumradius(const Vector& a, const Vector& b, const Vector& c)
 class Mesher
 {
 public:
-  Mesher(const VoronoiCocone& voronoi,
-         const ReconstructionParameters& parameters,
+  Mesher(const VoronoiCocone& voronoi, const ReconstructionParameters& parameters,
          ReconstructionReport& report)
-  : voronoi_(voronoi)
-  , points_(voronoi.centeredPoints())
-  , parameters_(parameters)
-  , report_(report)
-  , n_(voronoi.size())
+      : voronoi_(voronoi), points_(voronoi.centeredPoints()), parameters_(parameters),
+        report_(report), n_(voronoi.size())
   {}
 
-  void
-  run(std::vector<TriangleIndices>& output);
+  void run(std::vector<TriangleIndices>& output);
 
 private:
   // --- pool -----------------------------------------------------------------------
-  void
-  addToPool(const TriangleIndices& t, std::uint32_t group)
+  void addToPool(const TriangleIndices& t, std::uint32_t group)
   {
     pool_.push_back(t);
     state_.push_back(kCandidate);
     group_.push_back(group);
     oriented_.push_back(t);
+    if (!offsets_.empty()) // incidence lists exist: note it until they are rebuilt
+      for (const SampleIndex v : t)
+        late_[v].push_back(static_cast<std::uint32_t>(pool_.size() - 1));
   }
-  void
-  rebuildIncidence();
-  bool
-  contains(std::uint32_t t, SampleIndex v) const
+  void rebuildIncidence();
+  bool contains(std::uint32_t t, SampleIndex v) const
   {
     const TriangleIndices& tri = pool_[t];
     return tri[0] == v || tri[1] == v || tri[2] == v;
   }
-  SampleIndex
-  apex(std::uint32_t t, SampleIndex a, SampleIndex b) const
+  SampleIndex apex(std::uint32_t t, SampleIndex a, SampleIndex b) const
   {
     const TriangleIndices& tri = pool_[t];
     for (const SampleIndex v : tri)
@@ -97,27 +93,47 @@ private:
         return v;
     return kNoSample;
   }
-  /** Pool triangles on edge (a, b) accepted by \a keep. */
-  template <typename Keep>
-  void
-  trianglesOnEdge(SampleIndex a, SampleIndex b, Keep&& keep, std::vector<std::uint32_t>& out) const
+  /** Puts pool triangle t (oriented already) into the mesh. */
+  void enterMesh(std::uint32_t t)
   {
-    out.clear();
-    for (std::uint32_t k = offsets_[a]; k < offsets_[a + 1]; ++k) {
-      const std::uint32_t t = ids_[k];
-      if (contains(t, b) && keep(t))
-        out.push_back(t);
+    state_[t] = kInMesh;
+    for (const SampleIndex v : oriented_[t])
+      ++mesh_degree_[v];
+    if (grid_cell_ > 0)
+      gridInsert(t);
+  }
+  /** Calls f(t) for every pool triangle t at v: those of the incidence lists, and
+   * those added since they were last rebuilt. */
+  template <typename F> void forEachAround(SampleIndex v, F&& f) const
+  {
+    for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1]; ++k)
+      f(ids_[k]);
+    if (!late_.empty()) {
+      const auto late = late_.find(v);
+      if (late != late_.end())
+        for (const std::uint32_t t : late->second)
+          f(t);
     }
   }
-  /** Mesh triangles on edge (a, b). */
-  void
-  meshOnEdge(SampleIndex a, SampleIndex b, std::vector<std::uint32_t>& out) const
+  /** Pool triangles on edge (a, b) accepted by \a keep. */
+  template <typename Keep>
+  void trianglesOnEdge(SampleIndex a, SampleIndex b, Keep&& keep,
+                       std::vector<std::uint32_t>& out) const
   {
-    trianglesOnEdge(a, b, [&](std::uint32_t t) { return state_[t] == kInMesh; }, out);
+    out.clear();
+    forEachAround(a, [&](std::uint32_t t) {
+      if (contains(t, b) && keep(t))
+        out.push_back(t);
+    });
+  }
+  /** Mesh triangles on edge (a, b). */
+  void meshOnEdge(SampleIndex a, SampleIndex b, std::vector<std::uint32_t>& out) const
+  {
+    trianglesOnEdge(
+        a, b, [&](std::uint32_t t) { return state_[t] == kInMesh; }, out);
   }
   /** True when mesh triangle t traverses the edge a -> b. */
-  bool
-  traverses(std::uint32_t t, SampleIndex a, SampleIndex b) const
+  bool traverses(std::uint32_t t, SampleIndex a, SampleIndex b) const
   {
     const TriangleIndices& o = oriented_[t];
     for (int k = 0; k < 3; ++k)
@@ -125,51 +141,38 @@ private:
         return true;
     return false;
   }
-  Vector
-  orientedNormal(const TriangleIndices& o) const
+  Vector orientedNormal(const TriangleIndices& o) const
   {
     return (points_[o[1]] - points_[o[0]]).cross(points_[o[2]] - points_[o[0]]);
   }
 
   // --- stages ---------------------------------------------------------------------
-  void
-  measureSpacing();
-  double
-  typicalSpacing(const std::vector<SampleIndex>& samples) const;
-  bool
-  isTrueBoundary(double area, double perimeter, double spacing) const;
-  void
-  collectCandidates();
-  void
-  removeLids();
-  bool
-  fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
-                           std::vector<TriangleIndices>& fill,
-                           std::vector<std::uint32_t>& blockers);
-  bool
-  fillPolygon(std::vector<SampleIndex>& loop, double spacing);
-  bool
-  traceLoopFrom(SampleIndex start, std::vector<SampleIndex>& loop) const;
-  bool
-  closes(const std::vector<SampleIndex>& loop, const std::vector<std::uint32_t>& added);
-  void
-  undo(const std::vector<std::uint32_t>& added);
-  bool
-  intersectsSurface(const std::vector<std::uint32_t>& added) const;
-  double
-  area(const std::vector<std::uint32_t>& triangles) const;
-  std::size_t
-  labelFans(SampleIndex v,
-            std::vector<std::uint32_t>& fan,
-            std::vector<std::uint32_t>& label) const;
-  std::size_t
-  countFans(SampleIndex v) const;
-  std::size_t
-  prune(std::uint32_t group);
-  bool
-  mustPrune(std::uint32_t t);
-  void
-  walkAll();
+  void measureSpacing();
+  double typicalSpacing(const std::vector<SampleIndex>& samples) const;
+  bool isTrueBoundary(double area, double perimeter, double spacing) const;
+  void collectCandidates();
+  void removeLids();
+  bool fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
+                                std::vector<TriangleIndices>& fill,
+                                std::vector<std::uint32_t>& blockers);
+  bool fillPolygon(std::vector<SampleIndex>& loop, double spacing);
+  bool traceLoopFrom(SampleIndex start, std::vector<SampleIndex>& loop) const;
+  bool closes(const std::vector<SampleIndex>& loop,
+              const std::vector<std::uint32_t>& added);
+  void undo(const std::vector<std::uint32_t>& added);
+  bool intersectsSurface(const std::vector<std::uint32_t>& added);
+  template <typename F> void forEachCell(const TriangleIndices& t, F&& f) const;
+  void gridInsert(std::uint32_t t);
+  void meshNear(const TriangleIndices& t, std::vector<std::uint32_t>& nearby);
+  bool crossesMesh(const TriangleIndices& t, std::uint32_t self,
+                   std::vector<std::uint32_t>* blockers);
+  double area(const std::vector<std::uint32_t>& triangles) const;
+  std::size_t labelFans(SampleIndex v, std::vector<std::uint32_t>& fan,
+                        std::vector<std::uint32_t>& label) const;
+  std::size_t countFans(SampleIndex v) const;
+  std::size_t prune(std::uint32_t group);
+  bool mustPrune(std::uint32_t t);
+  void walkAll();
   struct Step
   {
     enum Outcome
@@ -181,24 +184,16 @@ private:
     } outcome;
     std::uint32_t triangle;
   };
-  Step
-  step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch);
-  std::size_t
-  walk(std::vector<std::pair<std::uint32_t, int>>& frontier,
-       std::uint32_t group,
-       std::vector<std::uint32_t>& added);
-  void
-  resolvePinches(std::vector<std::uint32_t>* removed = nullptr);
-  bool
-  seedTriangle(std::uint32_t& seed);
-  void
-  stitch(std::vector<std::vector<SampleIndex>>& loops);
-  std::vector<std::vector<SampleIndex>>
-  traceLoops() const;
-  void
-  insertUnusedSamples();
-  void
-  orientClosedComponentsOutward();
+  Step step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch);
+  std::size_t walk(std::vector<std::pair<std::uint32_t, int> >& frontier,
+                   std::uint32_t group, std::vector<std::uint32_t>& added);
+  void resolvePinches(std::vector<std::uint32_t>* removed = nullptr);
+  bool seedTriangle(std::uint32_t& seed);
+  void stitch(std::vector<std::vector<SampleIndex> >& loops);
+  std::vector<std::vector<SampleIndex> > traceLoops() const;
+  void insertUnusedSamples();
+  std::size_t removeCrossings();
+  void orientClosedComponentsOutward();
 
   const VoronoiCocone& voronoi_;
   const std::vector<Vector>& points_;
@@ -211,10 +206,21 @@ private:
   std::vector<std::uint32_t> group_;
   std::vector<TriangleIndices> oriented_; // orientation in the mesh
   std::vector<std::uint32_t> offsets_, ids_;
+  std::vector<std::uint32_t> group_start_; // group g spans [start[g], start[g + 1])
+
+  // A uniform grid over the mesh triangles' bounding boxes, built on first use by the
+  // checks that added triangles cross nothing (a fill across a hole can meet a part
+  // of the surface that is near in space but far along it). Triangles added later are
+  // entered as they come; removed ones stay listed and are skipped by state.
+  using CellKey = std::uint64_t;
+  std::unordered_map<CellKey, std::vector<std::uint32_t> > grid_;
+  double grid_cell_ = 0;
+  std::unordered_map<SampleIndex, std::vector<std::uint32_t> > late_; // added since
   std::vector<std::uint32_t> mesh_degree_; // mesh triangles at each sample
   std::vector<double> spacing_;            // local sample spacing
   std::vector<SampleIndex> seed_order_;    // samples by decreasing x
   std::vector<SampleIndex> pinched_;       // apexes of forced steps
+  std::vector<std::uint32_t> near_;        // scratch of crossesMesh
   std::size_t seed_cursor_ = 0;
 
   // Scratch, reused to keep loops free of allocations.
@@ -225,6 +231,7 @@ private:
 void
 Mesher::rebuildIncidence()
 {
+  late_.clear();
   offsets_.assign(n_ + 1, 0);
   for (const TriangleIndices& t : pool_)
     for (const SampleIndex v : t)
@@ -257,7 +264,8 @@ Mesher::measureSpacing()
     std::sort(distances.begin(), distances.end());
     distances.erase(std::unique(distances.begin(), distances.end()), distances.end());
     if (!distances.empty())
-      spacing_[p] = std::sqrt(distances[std::min<std::size_t>(distances.size(), 3) - 1]);
+      spacing_[p]
+          = std::sqrt(distances[std::min<std::size_t>(distances.size(), 3) - 1]);
   }
 }
 
@@ -284,7 +292,8 @@ Mesher::typicalSpacing(const std::vector<SampleIndex>& samples) const
 bool
 Mesher::isTrueBoundary(double area, double perimeter, double spacing) const
 {
-  return perimeter > 0 && 2 * area / perimeter > parameters_.true_boundary_ratio * spacing;
+  return perimeter > 0
+         && 2 * area / perimeter > parameters_.true_boundary_ratio * spacing;
 }
 
 // ---------------------------------------------------------------------------------
@@ -310,6 +319,7 @@ Mesher::collectCandidates()
       addToPool(t.vertex, kCoconeGroup);
   }
   report_.candidate_triangles = pool_.size();
+  group_start_ = {0, static_cast<std::uint32_t>(pool_.size())};
   rebuildIncidence();
 }
 
@@ -330,9 +340,10 @@ Mesher::removeLids()
   std::vector<std::uint8_t> oversized(pool_.size(), 0);
   for (std::uint32_t t = 0; t < pool_.size(); ++t) {
     const TriangleIndices& tri = pool_[t];
-    const double local = std::max({spacing_[tri[0]], spacing_[tri[1]], spacing_[tri[2]]});
-    oversized[t] =
-        circumradius(points_[tri[0]], points_[tri[1]], points_[tri[2]]) > kOversized * local;
+    const double local
+        = std::max({spacing_[tri[0]], spacing_[tri[1]], spacing_[tri[2]]});
+    oversized[t] = circumradius(points_[tri[0]], points_[tri[1]], points_[tri[2]])
+                   > kOversized * local;
   }
   // Boundary samples and the samples sharing a candidate with one.
   const std::vector<std::uint8_t>& boundary = report_.boundary_samples;
@@ -352,12 +363,14 @@ Mesher::removeLids()
     double area = 0, perimeter = 0;
     for (std::size_t head = 0; head < patch.size(); ++head) {
       const TriangleIndices& tri = pool_[patch[head]];
-      area += 0.5 * (points_[tri[1]] - points_[tri[0]])
-                        .cross(points_[tri[2]] - points_[tri[0]])
-                        .norm();
+      area += 0.5
+              * (points_[tri[1]] - points_[tri[0]])
+                    .cross(points_[tri[2]] - points_[tri[0]])
+                    .norm();
       for (int k = 0; k < 3; ++k) {
         const SampleIndex a = tri[k], b = tri[(k + 1) % 3];
-        trianglesOnEdge(a, b, [&](std::uint32_t s) { return oversized[s] != 0; }, on_edge);
+        trianglesOnEdge(
+            a, b, [&](std::uint32_t s) { return oversized[s] != 0; }, on_edge);
         if (on_edge.size() == 1)
           perimeter += (points_[a] - points_[b]).norm();
         for (const std::uint32_t s : on_edge)
@@ -384,9 +397,9 @@ Mesher::removeLids()
 // ---------------------------------------------------------------------------------
 // Pruning. An edge is sharp when, ordering its triangles by angle around it, two
 // consecutive ones are more than 3 pi / 2 apart: a fold (the triangles bend back onto
-// each other) or a bare edge (one triangle). Triangles at folds go. A triangle at a bare
-// edge goes too unless a flat sheet holds it: one of its other edges has exactly two
-// triangles meeting without a fold. That exception is what keeps a small gap (a
+// each other) or a bare edge (one triangle). Triangles at folds go. A triangle at a
+// bare edge goes too unless a flat sheet holds it: one of its other edges has exactly
+// two triangles meeting without a fold. That exception is what keeps a small gap (a
 // Delaunay triangle that only two of its three vertices marked, far from any boundary
 // sample) from letting pruning cascade through a whole surface (measured on the
 // Stanford bunny with the plain rule), while fins hanging off an edge shared by three
@@ -403,7 +416,8 @@ Mesher::mustPrune(std::uint32_t t)
     trianglesOnEdge(
         a, b,
         [&](std::uint32_t s) {
-          return state_[s] == kInMesh || (state_[s] == kCandidate && group_[s] == group);
+          return state_[s] == kInMesh
+                 || (state_[s] == kCandidate && group_[s] == group);
         },
         scratch_);
     if (scratch_.size() == 1) {
@@ -449,24 +463,26 @@ std::size_t
 Mesher::prune(std::uint32_t group)
 {
   const std::vector<std::uint8_t>& boundary = report_.boundary_samples;
+  // A group's triangles are contiguous in the pool.
+  const std::uint32_t first = group_start_[group], last = group_start_[group + 1];
   std::vector<std::uint32_t> work;
-  std::vector<std::uint8_t> queued(pool_.size(), 0);
-  for (std::uint32_t t = 0; t < pool_.size(); ++t)
-    if (state_[t] == kCandidate && group_[t] == group) {
+  std::vector<std::uint8_t> queued(last - first, 0);
+  for (std::uint32_t t = first; t < last; ++t)
+    if (state_[t] == kCandidate) {
       work.push_back(t);
-      queued[t] = 1;
+      queued[t - first] = 1;
     }
   std::size_t pruned = 0;
   std::vector<std::uint32_t> neighbours;
   while (!work.empty()) {
     const std::uint32_t t = work.back();
     work.pop_back();
-    queued[t] = 0;
+    queued[t - first] = 0;
     if (state_[t] != kCandidate)
       continue;
     const TriangleIndices& tri = pool_[t];
-    if (group == kCoconeGroup &&
-        (boundary[tri[0]] || boundary[tri[1]] || boundary[tri[2]]))
+    if (group == kCoconeGroup
+        && (boundary[tri[0]] || boundary[tri[1]] || boundary[tri[2]]))
       continue; // protected
     if (!mustPrune(t))
       continue;
@@ -475,11 +491,13 @@ Mesher::prune(std::uint32_t group)
     for (int k = 0; k < 3; ++k) {
       trianglesOnEdge(
           tri[k], tri[(k + 1) % 3],
-          [&](std::uint32_t s) { return state_[s] == kCandidate && group_[s] == group; },
+          [&](std::uint32_t s) {
+            return state_[s] == kCandidate && group_[s] == group;
+          },
           neighbours);
       for (const std::uint32_t s : neighbours)
-        if (!queued[s]) {
-          queued[s] = 1;
+        if (!queued[s - first]) {
+          queued[s - first] = 1;
           work.push_back(s);
         }
     }
@@ -507,7 +525,8 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
 
   // Candidates around the edge, by rotation angle from t towards its normal.
   trianglesOnEdge(
-      a, b, [&](std::uint32_t s) { return state_[s] == kCandidate && group_[s] == group; },
+      a, b,
+      [&](std::uint32_t s) { return state_[s] == kCandidate && group_[s] == group; },
       around_);
   if (around_.empty())
     return {Step::done, 0};
@@ -533,10 +552,12 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
 
   // Guards: at most two triangles per edge, traversing it in opposite directions.
   bool x_attached = mesh_degree_[x] == 0;
-  const std::array<std::pair<SampleIndex, SampleIndex>, 2> new_edges = {{{a, x}, {x, b}}};
+  const std::array<std::pair<SampleIndex, SampleIndex>, 2> new_edges
+      = {{{a, x}, {x, b}}};
   for (const auto& [from, to] : new_edges) {
     meshOnEdge(from, to, on_edge_);
-    if (on_edge_.size() >= 2 || (on_edge_.size() == 1 && traverses(on_edge_[0], from, to)))
+    if (on_edge_.size() >= 2
+        || (on_edge_.size() == 1 && traverses(on_edge_[0], from, to)))
       return {Step::refused, best};
     if (on_edge_.size() == 1)
       x_attached = true; // x's fan continues through this boundary edge
@@ -546,25 +567,22 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
   if (!x_attached)
     pinched_.push_back(x); // resolvePinches() looks at it again
 
-  state_[best] = kInMesh;
   oriented_[best] = {b, a, x};
-  for (const SampleIndex v : oriented_[best])
-    ++mesh_degree_[v];
+  enterMesh(best);
   return {Step::added, best};
 }
 
 std::size_t
-Mesher::walk(std::vector<std::pair<std::uint32_t, int>>& frontier,
-             std::uint32_t group,
+Mesher::walk(std::vector<std::pair<std::uint32_t, int> >& frontier, std::uint32_t group,
              std::vector<std::uint32_t>& added)
 {
   // Breadth first: the surface grows as a disc around the seed, so its front meets
   // itself only where the surface closes up. Where two parts of the front approach
   // each other, the first triangle joining them pinches a vertex for a moment; such
-  // steps wait until nothing else can be done, then go one at a time (the front then
-  // zips the seam and the pinch disappears; resolvePinches() removes what remains).
+  // steps wait until nothing else can be done, then go together (the front then zips
+  // the seams and the pinches disappear; resolvePinches() removes what remains).
   std::size_t count = 0;
-  std::vector<std::pair<std::uint32_t, int>> deferred;
+  std::vector<std::pair<std::uint32_t, int> > deferred;
   const auto push_edges = [&](std::uint32_t t) {
     added.push_back(t);
     ++count;
@@ -588,20 +606,18 @@ Mesher::walk(std::vector<std::pair<std::uint32_t, int>>& frontier,
       frontier.swap(deferred);
       continue;
     }
+    // Stuck: take every waiting step that is still valid, accepting the pinches.
     bool forced = false;
-    std::size_t k = 0;
-    for (; k < deferred.size() && !forced; ++k) {
-      const Step result = step(deferred[k].first, deferred[k].second, group, true);
+    for (const auto& [t, slot] : deferred) {
+      const Step result = step(t, slot, group, true);
       if (result.outcome == Step::added) {
         push_edges(result.triangle);
         forced = true;
       }
     }
+    deferred.clear();
     if (!forced)
       break;
-    frontier.insert(frontier.end(), deferred.begin() + static_cast<std::ptrdiff_t>(k),
-                    deferred.end());
-    deferred.clear();
   }
   return count;
 }
@@ -632,8 +648,8 @@ Mesher::resolvePinches(std::vector<std::uint32_t>* removed)
     size.assign(fan.size(), 0);
     for (const std::uint32_t root : label)
       ++size[root];
-    const std::size_t keep =
-        static_cast<std::size_t>(std::max_element(size.begin(), size.end()) - size.begin());
+    const std::size_t keep = static_cast<std::size_t>(
+        std::max_element(size.begin(), size.end()) - size.begin());
     for (std::size_t i = 0; i < fan.size(); ++i) {
       if (label[i] == keep)
         continue;
@@ -664,15 +680,17 @@ Mesher::seedTriangle(std::uint32_t& seed)
   if (seed_order_.empty()) {
     seed_order_.resize(n_);
     std::iota(seed_order_.begin(), seed_order_.end(), 0u);
-    std::sort(seed_order_.begin(), seed_order_.end(), [&](SampleIndex u, SampleIndex v) {
-      return points_[u].x() > points_[v].x() || (points_[u].x() == points_[v].x() && u < v);
-    });
+    std::sort(seed_order_.begin(), seed_order_.end(),
+              [&](SampleIndex u, SampleIndex v) {
+                return points_[u].x() > points_[v].x()
+                       || (points_[u].x() == points_[v].x() && u < v);
+              });
   }
   const auto is_free = [&](std::uint32_t t) {
     const TriangleIndices& tri = pool_[t];
-    return state_[t] == kCandidate && group_[t] == kCoconeGroup &&
-           mesh_degree_[tri[0]] == 0 && mesh_degree_[tri[1]] == 0 &&
-           mesh_degree_[tri[2]] == 0;
+    return state_[t] == kCandidate && group_[t] == kCoconeGroup
+           && mesh_degree_[tri[0]] == 0 && mesh_degree_[tri[1]] == 0
+           && mesh_degree_[tri[2]] == 0;
   };
   SampleIndex extreme = kNoSample;
   for (; seed_cursor_ < seed_order_.size(); ++seed_cursor_) {
@@ -711,8 +729,8 @@ Mesher::seedTriangle(std::uint32_t& seed)
         if (normal.dot(points_[v] - p) > 1e-12 * (points_[v] - p).norm())
           ++violations;
     }
-    if (violations < best_violations ||
-        (violations == best_violations && normal.x() > best_alignment)) {
+    if (violations < best_violations
+        || (violations == best_violations && normal.x() > best_alignment)) {
       best_violations = violations;
       best_alignment = normal.x();
       seed = t;
@@ -731,13 +749,11 @@ Mesher::seedTriangle(std::uint32_t& seed)
 void
 Mesher::walkAll()
 {
-  std::vector<std::pair<std::uint32_t, int>> frontier;
+  std::vector<std::pair<std::uint32_t, int> > frontier;
   std::vector<std::uint32_t> added;
   std::uint32_t seed = 0;
   while (seedTriangle(seed)) {
-    state_[seed] = kInMesh;
-    for (const SampleIndex v : oriented_[seed])
-      ++mesh_degree_[v];
+    enterMesh(seed);
     report_.walked_triangles += 1;
     frontier = {{seed, 0}, {seed, 1}, {seed, 2}};
     report_.walked_triangles += walk(frontier, kCoconeGroup, added);
@@ -745,11 +761,11 @@ Mesher::walkAll()
 }
 
 // ---------------------------------------------------------------------------------
-std::vector<std::vector<SampleIndex>>
+std::vector<std::vector<SampleIndex> >
 Mesher::traceLoops() const
 {
   // Boundary edges a -> b, as the single mesh triangle on them traverses them.
-  std::vector<std::pair<SampleIndex, SampleIndex>> edges;
+  std::vector<std::pair<SampleIndex, SampleIndex> > edges;
   std::vector<std::uint32_t> on_edge;
   for (std::uint32_t t = 0; t < pool_.size(); ++t) {
     if (state_[t] != kInMesh)
@@ -763,7 +779,7 @@ Mesher::traceLoops() const
   }
   std::sort(edges.begin(), edges.end());
   std::vector<std::uint8_t> used(edges.size(), 0);
-  std::vector<std::vector<SampleIndex>> loops;
+  std::vector<std::vector<SampleIndex> > loops;
   for (std::size_t start = 0; start < edges.size(); ++start) {
     if (used[start])
       continue;
@@ -793,16 +809,18 @@ Mesher::traceLoops() const
 // The hole stays open, and everything is undone, when it is a true boundary
 // (isTrueBoundary) or when closing it would break the manifold.
 void
-Mesher::stitch(std::vector<std::vector<SampleIndex>>& loops)
+Mesher::stitch(std::vector<std::vector<SampleIndex> >& loops)
 {
   if (loops.empty())
     return;
   std::vector<std::uint8_t> stitched(loops.size(), 0);
 
-  // Offer every hole its Delaunay triangles, in a group of its own.
+  // Offer every hole its Delaunay triangles, in a group of its own (numbered after
+  // those of any earlier call).
+  const std::uint32_t first_group = static_cast<std::uint32_t>(group_start_.size() - 1);
   std::vector<SampleIndex> neighbours;
-  std::vector<std::array<SampleIndex, 3>> delaunay;
-  std::vector<std::vector<SampleIndex>> members(loops.size());
+  std::vector<std::array<SampleIndex, 3> > delaunay;
+  std::vector<std::vector<SampleIndex> > members(loops.size());
   for (std::size_t h = 0; h < loops.size(); ++h) {
     std::vector<SampleIndex>& vertices = members[h];
     vertices = loops[h];
@@ -825,7 +843,8 @@ Mesher::stitch(std::vector<std::vector<SampleIndex>>& loops)
     }
     voronoi_.delaunayTrianglesAmong(vertices, delaunay);
     for (const auto& t : delaunay)
-      addToPool({t[0], t[1], t[2]}, static_cast<std::uint32_t>(h + 1));
+      addToPool({t[0], t[1], t[2]}, first_group + static_cast<std::uint32_t>(h));
+    group_start_.push_back(static_cast<std::uint32_t>(pool_.size()));
   }
   rebuildIncidence();
   // A hole triangle that is a mesh triangle already is of no use.
@@ -836,16 +855,17 @@ Mesher::stitch(std::vector<std::vector<SampleIndex>>& loops)
     const TriangleIndices& tri = pool_[t];
     trianglesOnEdge(
         tri[0], tri[1],
-        [&](std::uint32_t u) { return state_[u] == kInMesh && contains(u, tri[2]); }, same);
+        [&](std::uint32_t u) { return state_[u] == kInMesh && contains(u, tri[2]); },
+        same);
     if (!same.empty())
       state_[t] = kRejected;
   }
 
-  std::vector<std::pair<std::uint32_t, int>> frontier;
+  std::vector<std::pair<std::uint32_t, int> > frontier;
   std::vector<std::uint32_t> added, on_edge;
   std::vector<TriangleIndices> fill;
   for (std::size_t h = 0; h < loops.size(); ++h) {
-    const std::uint32_t group = static_cast<std::uint32_t>(h + 1);
+    const std::uint32_t group = first_group + static_cast<std::uint32_t>(h);
     const std::vector<SampleIndex>& loop = loops[h];
     double perimeter = 0;
     frontier.clear();
@@ -921,8 +941,9 @@ Mesher::fillPolygon(std::vector<SampleIndex>& loop, double spacing)
       for (const std::uint32_t t : blockers)
         pinched_.insert(pinched_.end(), oriented_[t].begin(), oriented_[t].end());
       resolvePinches(&removed);
-      if (!traceLoopFrom(loop.front(), grown) &&
-          !traceLoopFrom(mesh_degree_[loop.back()] ? loop.back() : loop.front(), grown))
+      if (!traceLoopFrom(loop.front(), grown)
+          && !traceLoopFrom(mesh_degree_[loop.back()] ? loop.back() : loop.front(),
+                            grown))
         break;
       loop = grown;
       continue;
@@ -932,21 +953,18 @@ Mesher::fillPolygon(std::vector<SampleIndex>& loop, double spacing)
       perimeter += (points_[loop[k]] - points_[loop[(k + 1) % loop.size()]]).norm();
     for (const TriangleIndices& t : fill)
       fill_area += 0.5 * orientedNormal(t).norm();
-    PCL_DEBUG("[pcl::cocone::reconstructSurface] hole of %zu edges: polygon fill of size "
-              "%.2f local spacings\n",
-              loop.size(), 2 * fill_area / perimeter / spacing);
+    PCL_DEBUG(
+        "[pcl::cocone::reconstructSurface] hole of %zu edges: polygon fill of size "
+        "%.2f local spacings\n",
+        loop.size(), 2 * fill_area / perimeter / spacing);
     if (isTrueBoundary(fill_area, perimeter, spacing))
       break;
     added.clear();
     for (const TriangleIndices& t : fill) {
       addToPool(t, kPolygonGroup);
-      const std::uint32_t id = static_cast<std::uint32_t>(pool_.size() - 1);
-      state_[id] = kInMesh;
-      for (const SampleIndex v : t)
-        ++mesh_degree_[v];
-      added.push_back(id);
+      added.push_back(static_cast<std::uint32_t>(pool_.size() - 1));
+      enterMesh(added.back());
     }
-    rebuildIncidence();
     closed = closes(loop, added);
     if (!closed) {
       undo(added);
@@ -959,11 +977,8 @@ Mesher::fillPolygon(std::vector<SampleIndex>& loop, double spacing)
     report_.stitched_triangles -= std::min(report_.stitched_triangles, removed.size());
     return true;
   }
-  for (const std::uint32_t t : removed) { // restore what was removed to grow the hole
-    state_[t] = kInMesh;
-    for (const SampleIndex v : oriented_[t])
-      ++mesh_degree_[v];
-  }
+  for (const std::uint32_t t : removed) // restore what was removed to grow the hole
+    enterMesh(t);
   return false;
 }
 
@@ -979,10 +994,9 @@ Mesher::traceLoopFrom(SampleIndex start, std::vector<SampleIndex>& loop) const
   for (std::size_t steps = 0; steps <= n_; ++steps) {
     SampleIndex next = kNoSample;
     int outgoing = 0;
-    for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1]; ++k) {
-      const std::uint32_t t = ids_[k];
+    forEachAround(v, [&](std::uint32_t t) {
       if (state_[t] != kInMesh)
-        continue;
+        return;
       const TriangleIndices& o = oriented_[t];
       for (int slot = 0; slot < 3; ++slot)
         if (o[slot] == v) {
@@ -992,7 +1006,7 @@ Mesher::traceLoopFrom(SampleIndex start, std::vector<SampleIndex>& loop) const
             ++outgoing;
           }
         }
-    }
+    });
     if (outgoing != 1)
       return false;
     loop.push_back(v);
@@ -1016,7 +1030,8 @@ Mesher::area(const std::vector<std::uint32_t>& triangles) const
 // triangles has two triangles, every vertex involved a single fan, and no added
 // triangle intersects the surface around the hole.
 bool
-Mesher::closes(const std::vector<SampleIndex>& loop, const std::vector<std::uint32_t>& added)
+Mesher::closes(const std::vector<SampleIndex>& loop,
+               const std::vector<std::uint32_t>& added)
 {
   if (intersectsSurface(added))
     return false;
@@ -1030,8 +1045,9 @@ Mesher::closes(const std::vector<SampleIndex>& loop, const std::vector<std::uint
     const TriangleIndices& o = oriented_[t];
     for (int k = 0; k < 3; ++k) {
       meshOnEdge(o[k], o[(k + 1) % 3], on_edge);
-      if (on_edge.size() != 2 || traverses(on_edge[0], o[k], o[(k + 1) % 3]) ==
-                                     traverses(on_edge[1], o[k], o[(k + 1) % 3]))
+      if (on_edge.size() != 2
+          || traverses(on_edge[0], o[k], o[(k + 1) % 3])
+                 == traverses(on_edge[1], o[k], o[(k + 1) % 3]))
         return false;
       if (countFans(o[k]) != 1)
         return false;
@@ -1044,30 +1060,81 @@ Mesher::closes(const std::vector<SampleIndex>& loop, const std::vector<std::uint
 // near it: those at the vertices of the added triangles and one ring around them.
 // Stitching fills are not restricted Delaunay triangles, so nothing else keeps them
 // from folding through the surface at sharp or thin parts.
-bool
-Mesher::intersectsSurface(const std::vector<std::uint32_t>& added) const
+template <typename F>
+void
+Mesher::forEachCell(const TriangleIndices& t, F&& f) const
 {
-  std::vector<SampleIndex> ring;
-  for (const std::uint32_t t : added)
-    ring.insert(ring.end(), oriented_[t].begin(), oriented_[t].end());
-  const std::size_t first_ring = ring.size();
-  for (std::size_t i = 0; i < first_ring; ++i)
-    for (std::uint32_t k = offsets_[ring[i]]; k < offsets_[ring[i] + 1]; ++k)
-      if (state_[ids_[k]] == kInMesh)
-        ring.insert(ring.end(), oriented_[ids_[k]].begin(), oriented_[ids_[k]].end());
-  std::sort(ring.begin(), ring.end());
-  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-  std::vector<std::uint32_t> nearby;
-  for (const SampleIndex v : ring)
-    for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1]; ++k)
-      if (state_[ids_[k]] == kInMesh)
-        nearby.push_back(ids_[k]);
+  const Vector low = points_[t[0]].cwiseMin(points_[t[1]]).cwiseMin(points_[t[2]]);
+  const Vector high = points_[t[0]].cwiseMax(points_[t[1]]).cwiseMax(points_[t[2]]);
+  const auto index
+      = [&](double x) { return static_cast<long>(std::floor(x / grid_cell_)); };
+  for (long x = index(low.x()); x <= index(high.x()); ++x)
+    for (long y = index(low.y()); y <= index(high.y()); ++y)
+      for (long z = index(low.z()); z <= index(high.z()); ++z)
+        f((static_cast<CellKey>(x & 0x1FFFFF) << 42)
+          | (static_cast<CellKey>(y & 0x1FFFFF) << 21)
+          | static_cast<CellKey>(z & 0x1FFFFF));
+}
+
+void
+Mesher::gridInsert(std::uint32_t t)
+{
+  forEachCell(oriented_[t], [&](CellKey key) { grid_[key].push_back(t); });
+}
+
+// Mesh triangles whose grid cells meet those of t.
+void
+Mesher::meshNear(const TriangleIndices& t, std::vector<std::uint32_t>& nearby)
+{
+  if (grid_cell_ == 0) {
+    double edges = 0;
+    std::size_t count = 0;
+    for (std::uint32_t u = 0; u < pool_.size(); ++u)
+      if (state_[u] == kInMesh) {
+        edges += (points_[oriented_[u][0]] - points_[oriented_[u][1]]).norm();
+        ++count;
+      }
+    grid_cell_ = count > 0 && edges > 0 ? 2 * edges / static_cast<double>(count) : 1;
+    for (std::uint32_t u = 0; u < pool_.size(); ++u)
+      if (state_[u] == kInMesh)
+        gridInsert(u);
+  }
+  nearby.clear();
+  forEachCell(t, [&](CellKey key) {
+    const auto found = grid_.find(key);
+    if (found != grid_.end())
+      for (const std::uint32_t u : found->second)
+        if (state_[u] == kInMesh)
+          nearby.push_back(u);
+  });
   std::sort(nearby.begin(), nearby.end());
   nearby.erase(std::unique(nearby.begin(), nearby.end()), nearby.end());
-  for (const std::uint32_t t : added)
-    for (const std::uint32_t s : nearby)
-      if (s != t && trianglesIntersect(points_, oriented_[t], oriented_[s]))
+}
+
+// Whether triangle t (pool id \a self, or kNoTriangle) crosses a mesh triangle; the
+// ones it crosses go to \a blockers if given.
+bool
+Mesher::crossesMesh(const TriangleIndices& t, std::uint32_t self,
+                    std::vector<std::uint32_t>* blockers)
+{
+  meshNear(t, near_);
+  bool crossing = false;
+  for (const std::uint32_t u : near_)
+    if (u != self && trianglesIntersect(points_, t, oriented_[u])) {
+      crossing = true;
+      if (blockers == nullptr)
         return true;
+      blockers->push_back(u);
+    }
+  return crossing;
+}
+
+bool
+Mesher::intersectsSurface(const std::vector<std::uint32_t>& added)
+{
+  for (const std::uint32_t t : added)
+    if (crossesMesh(oriented_[t], t, nullptr))
+      return true;
   return false;
 }
 
@@ -1095,22 +1162,6 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
   const std::size_t m = loop.size();
   if (m < 3)
     return false;
-  // The surface around the hole: mesh triangles at its vertices and one ring further.
-  std::vector<SampleIndex> ring(loop);
-  for (const SampleIndex v : loop)
-    for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1]; ++k)
-      if (state_[ids_[k]] == kInMesh)
-        ring.insert(ring.end(), oriented_[ids_[k]].begin(), oriented_[ids_[k]].end());
-  std::sort(ring.begin(), ring.end());
-  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-  std::vector<std::uint32_t> nearby;
-  for (const SampleIndex v : ring)
-    for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1]; ++k)
-      if (state_[ids_[k]] == kInMesh)
-        nearby.push_back(ids_[k]);
-  std::sort(nearby.begin(), nearby.end());
-  nearby.erase(std::unique(nearby.begin(), nearby.end()), nearby.end());
-
   std::vector<std::uint32_t> on_edge;
   const auto usable = [&](std::size_t i, std::size_t k) {
     if (k == i + 1 || (i == 0 && k == m - 1))
@@ -1119,13 +1170,7 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
     return on_edge.empty();
   };
   const auto crosses = [&](const TriangleIndices& t) {
-    bool crossing = false;
-    for (const std::uint32_t s : nearby)
-      if (trianglesIntersect(points_, t, oriented_[s])) {
-        crossing = true;
-        blockers.push_back(s);
-      }
-    return crossing;
+    return crossesMesh(t, kNoTriangle, &blockers);
   };
   const double infinity = std::numeric_limits<double>::infinity();
   std::vector<double> cost(m * m, infinity);
@@ -1154,7 +1199,7 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
   blockers.erase(std::unique(blockers.begin(), blockers.end()), blockers.end());
   if (!(cost[m - 1] < infinity))
     return false;
-  std::vector<std::pair<std::size_t, std::size_t>> stack = {{0, m - 1}};
+  std::vector<std::pair<std::size_t, std::size_t> > stack = {{0, m - 1}};
   while (!stack.empty()) {
     const auto [i, k] = stack.back();
     stack.pop_back();
@@ -1169,14 +1214,14 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
 }
 
 std::size_t
-Mesher::labelFans(SampleIndex v,
-                  std::vector<std::uint32_t>& fan,
+Mesher::labelFans(SampleIndex v, std::vector<std::uint32_t>& fan,
                   std::vector<std::uint32_t>& label) const
 {
   fan.clear();
-  for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1]; ++k)
-    if (state_[ids_[k]] == kInMesh)
-      fan.push_back(ids_[k]);
+  forEachAround(v, [&](std::uint32_t t) {
+    if (state_[t] == kInMesh)
+      fan.push_back(t);
+  });
   // Union-find: triangles sharing an edge (v, w) belong to the same fan.
   label.resize(fan.size());
   std::iota(label.begin(), label.end(), 0u);
@@ -1189,7 +1234,8 @@ Mesher::labelFans(SampleIndex v,
     for (std::size_t j = i + 1; j < fan.size(); ++j)
       for (const SampleIndex w : pool_[fan[i]])
         if (w != v && contains(fan[j], w))
-          label[find(static_cast<std::uint32_t>(i))] = find(static_cast<std::uint32_t>(j));
+          label[find(static_cast<std::uint32_t>(i))]
+              = find(static_cast<std::uint32_t>(j));
   std::size_t fans = 0;
   for (std::size_t i = 0; i < fan.size(); ++i) {
     label[i] = find(static_cast<std::uint32_t>(i));
@@ -1213,46 +1259,32 @@ Mesher::countFans(SampleIndex v) const
 void
 Mesher::insertUnusedSamples()
 {
-  std::vector<SampleIndex> neighbours, pending, deferred;
+  std::vector<SampleIndex> neighbours;
   std::vector<std::uint32_t> nearby;
   std::vector<TriangleIndices> splits;
   std::vector<std::uint32_t> nearby_edge;
-  std::vector<std::uint8_t> touched(n_, 0);
   std::size_t inserted = 0;
-  for (SampleIndex v = 0; v < n_; ++v)
-    if (mesh_degree_[v] == 0 && voronoi_.representative(v) == v && spacing_[v] > 0)
-      pending.push_back(v);
-  // New triangles enter the incidence lists only when they are rebuilt, so a sample
-  // whose surroundings changed in this pass waits for the next one.
-  for (int pass = 0; pass < 4 && !pending.empty(); ++pass) {
-    deferred.clear();
-    std::fill(touched.begin(), touched.end(), 0);
-    const std::size_t inserted_before = inserted;
-    for (const SampleIndex v : pending) {
+  for (SampleIndex v = 0; v < n_; ++v) {
+    if (mesh_degree_[v] != 0 || voronoi_.representative(v) != v || !(spacing_[v] > 0))
+      continue;
     // The mesh triangles at its Delaunay neighbours.
     voronoi_.delaunayNeighbours(v, neighbours);
     nearby.clear();
     for (const SampleIndex w : neighbours)
-      for (std::uint32_t k = offsets_[w]; k < offsets_[w + 1]; ++k)
-        if (state_[ids_[k]] == kInMesh)
-          nearby.push_back(ids_[k]);
+      forEachAround(w, [&](std::uint32_t t) {
+        if (state_[t] == kInMesh)
+          nearby.push_back(t);
+      });
     std::sort(nearby.begin(), nearby.end());
     nearby.erase(std::unique(nearby.begin(), nearby.end()), nearby.end());
-    bool waits = false;
-    for (const std::uint32_t t : nearby)
-      for (const SampleIndex w : oriented_[t])
-        waits = waits || touched[w];
-    if (waits) {
-      deferred.push_back(v);
-      continue;
-    }
     // The closest point of those triangles: inside one (split it in three) or on an
     // edge shared by two (split both in two).
     // Measured in the spacing of the surface there, not of v: an outlier's own nearest
     // neighbours are far.
     const Vector p = points_[v];
     const auto reach = [&](const TriangleIndices& o) {
-      return kInsertionReach * std::min({spacing_[o[0]], spacing_[o[1]], spacing_[o[2]]});
+      return kInsertionReach
+             * std::min({spacing_[o[0]], spacing_[o[1]], spacing_[o[2]]});
     };
     double best_distance = std::numeric_limits<double>::infinity();
     std::uint32_t best = 0;
@@ -1266,8 +1298,8 @@ Mesher::insertUnusedSamples()
         continue;
       const Vector unit = normal / twice_area;
       const Vector q = p - (p - a).dot(unit) * unit; // projection on the plane
-      if ((b - a).cross(q - a).dot(unit) >= 0 && (c - b).cross(q - b).dot(unit) >= 0 &&
-          (a - c).cross(q - c).dot(unit) >= 0) {
+      if ((b - a).cross(q - a).dot(unit) >= 0 && (c - b).cross(q - b).dot(unit) >= 0
+          && (a - c).cross(q - c).dot(unit) >= 0) {
         const double distance = std::abs((p - a).dot(unit));
         if (distance < best_distance && distance < reach(o)) {
           best_distance = distance;
@@ -1302,18 +1334,21 @@ Mesher::insertUnusedSamples()
       meshOnEdge(e0, e1, nearby_edge);
       if (nearby_edge.size() != 2)
         continue;
-      const std::uint32_t other = nearby_edge[0] == best ? nearby_edge[1] : nearby_edge[0];
+      const std::uint32_t other
+          = nearby_edge[0] == best ? nearby_edge[1] : nearby_edge[0];
       const SampleIndex apex_there = apex(other, e0, e1);
       replaced.push_back(other);
       // best traverses e0 -> e1, other e1 -> e0; keep both orientations.
-      splits = {{e0, v, apex_here}, {v, e1, apex_here}, {e1, v, apex_there},
+      splits = {{e0, v, apex_here},
+                {v, e1, apex_here},
+                {e1, v, apex_there},
                 {v, e0, apex_there}};
     }
     bool crossing = false;
     for (const TriangleIndices& split : splits)
-      for (const std::uint32_t t : nearby)
-        if (std::find(replaced.begin(), replaced.end(), t) == replaced.end() &&
-            trianglesIntersect(points_, split, oriented_[t]))
+      for (const std::uint32_t t : (meshNear(split, near_), near_))
+        if (std::find(replaced.begin(), replaced.end(), t) == replaced.end()
+            && trianglesIntersect(points_, split, oriented_[t]))
           crossing = true;
     if (crossing)
       continue;
@@ -1324,21 +1359,97 @@ Mesher::insertUnusedSamples()
     }
     for (const TriangleIndices& split : splits) {
       addToPool(split, kPolygonGroup);
-      state_.back() = kInMesh;
-      for (const SampleIndex w : split) {
-        ++mesh_degree_[w];
-        touched[w] = 1;
-      }
+      enterMesh(static_cast<std::uint32_t>(pool_.size() - 1));
     }
     ++inserted;
-    }
-    if (inserted != inserted_before)
-      rebuildIncidence();
-    if (inserted == inserted_before && deferred.size() == pending.size())
-      break;
-    pending.swap(deferred);
   }
   report_.inserted_samples = inserted;
+}
+
+// The walk takes restricted Delaunay triangles, which cannot cross on a well-sampled
+// surface; where samples are undersampled or noisy (boundary samples), and where
+// triangles were added by stitching or insertion, nothing rules it out. Those
+// triangles are checked against every mesh triangle whose bounding box meets theirs
+// (a uniform grid over the suspects' cells), and of each crossing pair the one added
+// last is removed; the holes this leaves are stitched like the others (fills are
+// checked already). Returns the number of triangles removed.
+std::size_t
+Mesher::removeCrossings()
+{
+  using CellRange = Eigen::Array<long, 3, 1>;
+  const std::vector<std::uint8_t>& boundary = report_.boundary_samples;
+  std::vector<std::uint32_t> mesh, suspects;
+  double edge_sum = 0;
+  for (std::uint32_t t = 0; t < pool_.size(); ++t) {
+    if (state_[t] != kInMesh)
+      continue;
+    mesh.push_back(t);
+    const TriangleIndices& o = oriented_[t];
+    edge_sum += (points_[o[0]] - points_[o[1]]).norm();
+    if (group_[t] != kCoconeGroup || boundary[o[0]] || boundary[o[1]] || boundary[o[2]])
+      suspects.push_back(t);
+  }
+  if (suspects.empty())
+    return 0;
+  const double cell = 2 * edge_sum / static_cast<double>(mesh.size());
+  const auto key = [](long x, long y, long z) {
+    return (static_cast<std::uint64_t>(x & 0x1FFFFF) << 42)
+           | (static_cast<std::uint64_t>(y & 0x1FFFFF) << 21)
+           | static_cast<std::uint64_t>(z & 0x1FFFFF);
+  };
+  const auto cells = [&](std::uint32_t t, CellRange& low, CellRange& high) {
+    const TriangleIndices& o = oriented_[t];
+    const Vector a = points_[o[0]].cwiseMin(points_[o[1]]).cwiseMin(points_[o[2]]);
+    const Vector b = points_[o[0]].cwiseMax(points_[o[1]]).cwiseMax(points_[o[2]]);
+    low = (a.array() / cell).floor().cast<long>();
+    high = (b.array() / cell).floor().cast<long>();
+  };
+  // Only the suspects' cells: every pair with a suspect meets in one of them.
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t> > grid;
+  std::vector<std::uint8_t> suspect(pool_.size(), 0);
+  CellRange low, high;
+  for (const std::uint32_t t : suspects) {
+    suspect[t] = 1;
+    cells(t, low, high);
+    for (long x = low.x(); x <= high.x(); ++x)
+      for (long y = low.y(); y <= high.y(); ++y)
+        for (long z = low.z(); z <= high.z(); ++z)
+          grid[key(x, y, z)];
+  }
+  for (const std::uint32_t t : mesh) {
+    cells(t, low, high);
+    for (long x = low.x(); x <= high.x(); ++x)
+      for (long y = low.y(); y <= high.y(); ++y)
+        for (long z = low.z(); z <= high.z(); ++z) {
+          const auto found = grid.find(key(x, y, z));
+          if (found != grid.end())
+            found->second.push_back(t);
+        }
+  }
+  std::vector<std::uint32_t> gone;
+  for (const auto& entry : grid) {
+    const std::vector<std::uint32_t>& here = entry.second;
+    for (std::size_t i = 0; i < here.size(); ++i)
+      for (std::size_t j = i + 1; j < here.size(); ++j) {
+        const std::uint32_t t = here[i], u = here[j];
+        if ((!suspect[t] && !suspect[u]) || state_[t] != kInMesh
+            || state_[u] != kInMesh)
+          continue;
+        if (!trianglesIntersect(points_, oriented_[t], oriented_[u]))
+          continue;
+        const std::uint32_t drop = std::max(t, u);
+        state_[drop] = kRejected;
+        for (const SampleIndex v : oriented_[drop])
+          --mesh_degree_[v];
+        gone.push_back(drop);
+      }
+  }
+  // A removal can leave a vertex with two fans.
+  for (const std::uint32_t t : gone)
+    pinched_.insert(pinched_.end(), oriented_[t].begin(), oriented_[t].end());
+  resolvePinches();
+  report_.crossing_triangles = gone.size();
+  return gone.size();
 }
 
 // Closed components face outward: flip any whose signed volume is negative.
@@ -1414,6 +1525,11 @@ Mesher::run(std::vector<TriangleIndices>& output)
   if (parameters_.stitch_holes)
     stitch(report_.open_loops);
   insertUnusedSamples();
+  if (removeCrossings() > 0) {
+    report_.open_loops = traceLoops();
+    if (parameters_.stitch_holes)
+      stitch(report_.open_loops);
+  }
   lap(timings.stitching);
   orientClosedComponentsOutward();
 

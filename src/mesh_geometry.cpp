@@ -4,6 +4,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
 
+#include <algorithm>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -89,6 +90,17 @@ trianglesIntersect(const std::vector<Eigen::Vector3d>& points,
                    const TriangleIndices& a,
                    const TriangleIndices& b)
 {
+  // Separated bounding boxes: no contact (strict comparison, so touching boxes go on to
+  // the exact test).
+  for (int axis = 0; axis < 3; ++axis) {
+    const double a0 = points.at(a[0])[axis], a1 = points.at(a[1])[axis],
+                 a2 = points.at(a[2])[axis];
+    const double b0 = points.at(b[0])[axis], b1 = points.at(b[1])[axis],
+                 b2 = points.at(b[2])[axis];
+    if (std::max({a0, a1, a2}) < std::min({b0, b1, b2}) ||
+        std::max({b0, b1, b2}) < std::min({a0, a1, a2}))
+      return false;
+  }
   // Local copies, indexed like the points, only for the (at most six) corners used.
   std::array<Point, 6> corners;
   TriangleIndices la{}, lb{};

@@ -60,6 +60,9 @@ struct ReconstructionReport
   /** Samples left out by the extraction and put back by splitting the triangle they
    * lie over (within half a local spacing). */
   std::size_t inserted_samples = 0;
+  /** Triangles removed because they crossed another one (undersampled or noisy parts);
+   * their holes are stitched. */
+  std::size_t crossing_triangles = 0;
   /** The boundary loops left open (true boundaries and holes that could not be closed),
    * as vertex cycles oriented with the surface. */
   std::vector<std::vector<SampleIndex>> open_loops;
