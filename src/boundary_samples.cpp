@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <pcl/cocone/boundary_samples.h>
+#include <pcl/cocone/parameters.h>
 
 #include <algorithm>
 #include <cmath>
@@ -10,9 +11,9 @@ namespace cocone {
 bool
 isValid(const BoundaryParameters& parameters)
 {
-  return parameters.ratio_bound > 0 && parameters.ratio_bound <= 10 &&
-         parameters.normal_angle > 0 && parameters.normal_angle <= M_PI / 2 &&
-         parameters.band_rings <= 64;
+  return kRatioBoundRange.contains(parameters.ratio_bound) &&
+         kNormalAngleRange.contains(parameters.normal_angle) &&
+         kBandRingsRange.contains(parameters.band_rings);
 }
 
 namespace {

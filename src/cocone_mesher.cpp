@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <pcl/cocone/cocone_mesher.h>
 #include <pcl/cocone/mesh_geometry.h>
+#include <pcl/cocone/parameters.h>
 #include <pcl/console/print.h>
 
 #include <Eigen/Geometry>
@@ -18,8 +19,8 @@ namespace cocone {
 bool
 isValid(const ReconstructionParameters& parameters)
 {
-  return isValid(parameters.boundary) && parameters.true_boundary_ratio >= 0.5
-         && parameters.true_boundary_ratio <= 1000;
+  return isValid(parameters.boundary) &&
+         kTrueBoundaryRatioRange.contains(parameters.true_boundary_ratio);
 }
 
 namespace {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "delaunay.h"
 
+#include <pcl/cocone/parameters.h>
+
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -231,7 +233,7 @@ VoronoiCocone::operator=(VoronoiCocone&&) noexcept = default;
 Status
 VoronoiCocone::setCoconeAngle(double theta)
 {
-  if (!(theta > 0 && theta < M_PI / 2))
+  if (!kCoconeAngleRange.contains(theta))
     return Status::invalid_parameter;
   cocone_angle_ = theta;
   return Status::ok;

@@ -3,6 +3,7 @@
 
 #include <pcl/cocone/boundary_sample_estimation.h>
 #include <pcl/cocone/cloud_samples.h>
+#include <pcl/cocone/parameters.h>
 #include <pcl/console/print.h>
 
 #include <limits>
@@ -14,50 +15,36 @@ template <typename PointInT, typename PointOutT>
 void
 BoundarySampleEstimation<PointInT, PointOutT>::setRatioBound(double rho)
 {
-  if (!(rho > 0 && rho <= 10)) {
-    PCL_ERROR("[pcl::%s::setRatioBound] rho = %g is outside (0, 10]; keeping %g.\n",
-              getClassName().c_str(), rho, parameters_.ratio_bound);
-    return;
-  }
-  parameters_.ratio_bound = rho;
+  if (cocone::acceptParameter(getClassName(), "setRatioBound", "rho", rho,
+                              cocone::kRatioBoundRange, parameters_.ratio_bound))
+    parameters_.ratio_bound = rho;
 }
 
 template <typename PointInT, typename PointOutT>
 void
 BoundarySampleEstimation<PointInT, PointOutT>::setNormalAngle(double alpha)
 {
-  if (!(alpha > 0 && alpha <= M_PI / 2)) {
-    PCL_ERROR("[pcl::%s::setNormalAngle] alpha = %g rad is outside (0, pi/2]; keeping "
-              "%g.\n",
-              getClassName().c_str(), alpha, parameters_.normal_angle);
-    return;
-  }
-  parameters_.normal_angle = alpha;
+  if (cocone::acceptParameter(getClassName(), "setNormalAngle", "alpha", alpha,
+                              cocone::kNormalAngleRange, parameters_.normal_angle))
+    parameters_.normal_angle = alpha;
 }
 
 template <typename PointInT, typename PointOutT>
 void
 BoundarySampleEstimation<PointInT, PointOutT>::setCoconeAngle(double theta)
 {
-  if (!(theta > 0 && theta < M_PI / 2)) {
-    PCL_ERROR("[pcl::%s::setCoconeAngle] theta = %g rad is outside (0, pi/2); keeping "
-              "%g.\n",
-              getClassName().c_str(), theta, cocone_angle_);
-    return;
-  }
-  cocone_angle_ = theta;
+  if (cocone::acceptParameter(getClassName(), "setCoconeAngle", "theta", theta,
+                              cocone::kCoconeAngleRange, cocone_angle_))
+    cocone_angle_ = theta;
 }
 
 template <typename PointInT, typename PointOutT>
 void
 BoundarySampleEstimation<PointInT, PointOutT>::setBoundaryBandRings(unsigned rings)
 {
-  if (rings > 64) {
-    PCL_ERROR("[pcl::%s::setBoundaryBandRings] %u rings is more than 64; keeping %u.\n",
-              getClassName().c_str(), rings, parameters_.band_rings);
-    return;
-  }
-  parameters_.band_rings = rings;
+  if (cocone::acceptParameter(getClassName(), "setBoundaryBandRings", "rings", rings,
+                              cocone::kBandRingsRange, parameters_.band_rings))
+    parameters_.band_rings = rings;
 }
 
 template <typename PointInT, typename PointOutT>

@@ -3,6 +3,7 @@
 
 #include <pcl/cocone/cloud_samples.h>
 #include <pcl/cocone/cocone_reconstruction.h>
+#include <pcl/cocone/parameters.h>
 #include <pcl/console/print.h>
 
 namespace pcl {
@@ -11,50 +12,38 @@ template <typename PointInT>
 void
 CoconeReconstruction<PointInT>::setCoconeAngle(double theta)
 {
-  if (!(theta > 0 && theta < M_PI / 2)) {
-    PCL_ERROR("[pcl::%s::setCoconeAngle] theta = %g rad is outside (0, pi/2); keeping "
-              "%g.\n",
-              getClassName().c_str(), theta, cocone_angle_);
-    return;
-  }
-  cocone_angle_ = theta;
+  if (cocone::acceptParameter(getClassName(), "setCoconeAngle", "theta", theta,
+                              cocone::kCoconeAngleRange, cocone_angle_))
+    cocone_angle_ = theta;
 }
 
 template <typename PointInT>
 void
 CoconeReconstruction<PointInT>::setRatioBound(double rho)
 {
-  if (!(rho > 0 && rho <= 10)) {
-    PCL_ERROR("[pcl::%s::setRatioBound] rho = %g is outside (0, 10]; keeping %g.\n",
-              getClassName().c_str(), rho, parameters_.boundary.ratio_bound);
-    return;
-  }
-  parameters_.boundary.ratio_bound = rho;
+  if (cocone::acceptParameter(getClassName(), "setRatioBound", "rho", rho,
+                              cocone::kRatioBoundRange, parameters_.boundary.ratio_bound))
+    parameters_.boundary.ratio_bound = rho;
 }
 
 template <typename PointInT>
 void
 CoconeReconstruction<PointInT>::setNormalAngle(double alpha)
 {
-  if (!(alpha > 0 && alpha <= M_PI / 2)) {
-    PCL_ERROR("[pcl::%s::setNormalAngle] alpha = %g rad is outside (0, pi/2]; keeping "
-              "%g.\n",
-              getClassName().c_str(), alpha, parameters_.boundary.normal_angle);
-    return;
-  }
-  parameters_.boundary.normal_angle = alpha;
+  if (cocone::acceptParameter(getClassName(), "setNormalAngle", "alpha", alpha,
+                              cocone::kNormalAngleRange,
+                              parameters_.boundary.normal_angle))
+    parameters_.boundary.normal_angle = alpha;
 }
 
 template <typename PointInT>
 void
 CoconeReconstruction<PointInT>::setTrueBoundaryRatio(double ratio)
 {
-  if (!(ratio >= 0.5 && ratio <= 1000)) {
-    PCL_ERROR("[pcl::%s::setTrueBoundaryRatio] %g is outside [0.5, 1000]; keeping %g.\n",
-              getClassName().c_str(), ratio, parameters_.true_boundary_ratio);
-    return;
-  }
-  parameters_.true_boundary_ratio = ratio;
+  if (cocone::acceptParameter(getClassName(), "setTrueBoundaryRatio", "ratio", ratio,
+                              cocone::kTrueBoundaryRatioRange,
+                              parameters_.true_boundary_ratio))
+    parameters_.true_boundary_ratio = ratio;
 }
 
 template <typename PointInT>

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <pcl/cocone/cloud_samples.h>
+#include <pcl/cocone/parameters.h>
 #include <pcl/cocone/voronoi_cocone.h>
 #include <pcl/cocone/voronoi_decimation.h>
 #include <pcl/console/print.h>
@@ -15,25 +16,18 @@ template <typename PointT>
 void
 VoronoiDecimation<PointT>::setRatioBound(double rho)
 {
-  if (!(rho > 0 && rho <= 10)) {
-    PCL_ERROR("[pcl::%s::setRatioBound] rho = %g is outside (0, 10]; keeping %g.\n",
-              getClassName().c_str(), rho, ratio_bound_);
-    return;
-  }
-  ratio_bound_ = rho;
+  if (cocone::acceptParameter(getClassName(), "setRatioBound", "rho", rho,
+                              cocone::kRatioBoundRange, ratio_bound_))
+    ratio_bound_ = rho;
 }
 
 template <typename PointT>
 void
 VoronoiDecimation<PointT>::setCoconeAngle(double theta)
 {
-  if (!(theta > 0 && theta < M_PI / 2)) {
-    PCL_ERROR("[pcl::%s::setCoconeAngle] theta = %g rad is outside (0, pi/2); keeping "
-              "%g.\n",
-              getClassName().c_str(), theta, cocone_angle_);
-    return;
-  }
-  cocone_angle_ = theta;
+  if (cocone::acceptParameter(getClassName(), "setCoconeAngle", "theta", theta,
+                              cocone::kCoconeAngleRange, cocone_angle_))
+    cocone_angle_ = theta;
 }
 
 template <typename PointT>
@@ -92,11 +86,9 @@ VoronoiDecimation<PointT>::computeLevelsOfDetail(const std::vector<double>& rati
   if (ratio_bounds.empty())
     return true;
   for (const double rho : ratio_bounds)
-    if (!(rho > 0 && rho <= 10)) {
-      PCL_ERROR("[pcl::%s::computeLevelsOfDetail] rho = %g is outside (0, 10].\n",
-                getClassName().c_str(), rho);
+    if (!cocone::acceptParameter(getClassName(), "computeLevelsOfDetail", "rho", rho,
+                                 cocone::kRatioBoundRange, ratio_bound_))
       return false;
-    }
   if (!this->initCompute())
     return false;
   const bool ok = decimate(*std::max_element(ratio_bounds.begin(), ratio_bounds.end()));
