@@ -204,9 +204,11 @@ Eigen::Vector3d
 hullFacetNormal(CellHandle c, int i);
 
 /** Computes the cocone radius of \a v for the unit axis \a axis. Every Voronoi edge of
- * V_v is the dual of a Delaunay facet (c, i) of the star; each is visited once (from its
- * finite cell, or from the cell at the lower address). For each edge that meets the
- * cocone, calls on_marked(c, i) so that the caller can record the mark. */
+ * V_v is the dual of a Delaunay facet (c, i) of the star; each is visited once, from its
+ * finite cell or from the cell of lower index (not address: the edge is clipped from
+ * that side, and the rounding must not change from run to run). For each edge that
+ * meets the cocone, calls on_marked(c, i) so that the caller can record the mark.
+ * Needs every finite cell numbered (cellIndex). */
 template <typename OnMarked>
 double
 computeCoconeRadius(const Delaunay& dt,
@@ -226,7 +228,7 @@ computeCoconeRadius(const Delaunay& dt,
         continue; // the facet opposite v does not contain v
       const CellHandle n = c->neighbor(i);
       const bool ray = dt.is_infinite(n);
-      if (!ray && std::less<const void*>()(&*n, &*c))
+      if (!ray && n->cellIndex() < c->cellIndex())
         continue; // visited from n
       const Eigen::Vector3d start = c->center() - p;
       const Eigen::Vector3d direction =

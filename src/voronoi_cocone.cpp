@@ -522,7 +522,7 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
     const CellHandle c = cells[k];
     for (int i = 0; i < 4; ++i) {
       const CellHandle nb = c->neighbor(i);
-      if (!dt.is_infinite(nb) && std::less<const void*>()(&*nb, &*c))
+      if (!dt.is_infinite(nb) && nb->cellIndex() < c->cellIndex())
         continue;
       MarkedTriangle triangle;
       triangle.marked_by = 0;

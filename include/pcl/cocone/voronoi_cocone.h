@@ -173,7 +173,7 @@ public:
   const Timings&
   timings() const;
 
-  /** \brief Status of the last compute() or decimate(). */
+  /** \brief Status of the last compute() (decimate() returns its own). */
   Status
   status() const;
 
