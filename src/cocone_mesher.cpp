@@ -1499,10 +1499,11 @@ Mesher::run(std::vector<TriangleIndices>& output)
 {
   using Clock = std::chrono::steady_clock;
   Clock::time_point start = Clock::now();
-  const auto lap = [&](double& seconds) {
+  const auto lap = [&](double& seconds, const char* stage) {
     const Clock::time_point now = Clock::now();
     seconds = std::chrono::duration<double>(now - start).count();
     start = now;
+    PCL_DEBUG("[pcl::cocone::reconstructSurface] %s: %.3f s\n", stage, seconds);
   };
   report_ = ReconstructionReport();
   ReconstructionReport::Timings& timings = report_.timings;
@@ -1511,17 +1512,17 @@ Mesher::run(std::vector<TriangleIndices>& output)
   else
     report_.boundary_samples.assign(n_, 0);
   mesh_degree_.assign(n_, 0);
-  lap(timings.boundary);
+  lap(timings.boundary, "boundary samples");
 
   measureSpacing();
   collectCandidates();
   removeLids();
-  lap(timings.candidates);
+  lap(timings.candidates, "candidates and lids");
   report_.pruned_triangles = prune(kCoconeGroup);
-  lap(timings.pruning);
+  lap(timings.pruning, "pruning");
   walkAll();
   resolvePinches();
-  lap(timings.walk);
+  lap(timings.walk, "manifold extraction");
   report_.open_loops = traceLoops();
   if (parameters_.stitch_holes)
     stitch(report_.open_loops);
@@ -1531,7 +1532,7 @@ Mesher::run(std::vector<TriangleIndices>& output)
     if (parameters_.stitch_holes)
       stitch(report_.open_loops);
   }
-  lap(timings.stitching);
+  lap(timings.stitching, "stitching");
   orientClosedComponentsOutward();
 
   output.clear();
@@ -1541,7 +1542,7 @@ Mesher::run(std::vector<TriangleIndices>& output)
   for (SampleIndex v = 0; v < n_; ++v)
     if (mesh_degree_[v] == 0)
       report_.unused_samples.push_back(v);
-  lap(timings.finishing);
+  lap(timings.finishing, "orientation and loops");
 }
 
 } // namespace

@@ -2,6 +2,7 @@
 #include "delaunay.h"
 
 #include <pcl/cocone/parameters.h>
+#include <pcl/console/print.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -677,6 +678,9 @@ VoronoiCocone::compute(const std::vector<Eigen::Vector3d>& points)
   }
 
   d.timings.delaunay = seconds_since(start);
+  PCL_DEBUG("[pcl::cocone::VoronoiCocone] Delaunay triangulation of %zu samples (%zu "
+            "distinct): %.3f s\n",
+            n, d.unique_count, d.timings.delaunay);
   const Clock::time_point geometry_start = Clock::now();
   try {
     runInArena(threads_, [&] { computeGeometry(d, std::sin(cocone_angle_)); });
@@ -688,6 +692,9 @@ VoronoiCocone::compute(const std::vector<Eigen::Vector3d>& points)
     return fail(Status::internal_error, std::string("Voronoi geometry failed: ") + e.what());
   }
   d.timings.geometry = seconds_since(geometry_start);
+  PCL_DEBUG("[pcl::cocone::VoronoiCocone] poles, radii and cocone marks: %.3f s, %zu "
+            "marked triangles\n",
+            d.timings.geometry, d.triangles.size());
   d.status = Status::ok;
   d.message.clear();
   return Status::ok;
