@@ -103,6 +103,16 @@ private:
     if (grid_cell_ > 0)
       gridInsert(t);
   }
+  /** Takes mesh triangle t out of the mesh; its edges may be open now. */
+  void leaveMesh(std::uint32_t t)
+  {
+    state_[t] = kRejected;
+    const TriangleIndices& o = oriented_[t];
+    for (int k = 0; k < 3; ++k) {
+      --mesh_degree_[o[k]];
+      maybe_open_.emplace_back(o[k], o[(k + 1) % 3]);
+    }
+  }
   /** Calls f(t) for every pool triangle t at v: those of the incidence lists, and
    * those added since they were last rebuilt. */
   template <typename F> void forEachAround(SampleIndex v, F&& f) const
@@ -194,6 +204,8 @@ private:
   std::vector<std::vector<SampleIndex> > traceLoops() const;
   void insertUnusedSamples();
   std::size_t removeCrossings();
+  void meshAtNeighbours(const TriangleIndices& t,
+                        std::vector<std::uint32_t>& nearby) const;
   void orientClosedComponentsOutward();
 
   const VoronoiCocone& voronoi_;
@@ -222,6 +234,10 @@ private:
   std::vector<SampleIndex> seed_order_;    // samples by decreasing x
   std::vector<SampleIndex> pinched_;       // apexes of forced steps
   std::vector<std::uint32_t> near_;        // scratch of crossesMesh
+  // Edges that may be boundary edges: those the walk could not continue across and
+  // those of removed triangles. Every boundary edge of the mesh is among them, so
+  // tracing the loops does not need to look at every triangle.
+  std::vector<std::pair<SampleIndex, SampleIndex> > maybe_open_;
   std::size_t seed_cursor_ = 0;
 
   // Scratch, reused to keep loops free of allocations.
@@ -265,8 +281,8 @@ Mesher::measureSpacing()
     std::sort(distances.begin(), distances.end());
     distances.erase(std::unique(distances.begin(), distances.end()), distances.end());
     if (!distances.empty())
-      spacing_[p]
-          = std::sqrt(distances[std::min<std::size_t>(distances.size(), 3) - 1]);
+      spacing_[p] =
+          std::sqrt(distances[std::min<std::size_t>(distances.size(), 3) - 1]);
   }
 }
 
@@ -293,8 +309,8 @@ Mesher::typicalSpacing(const std::vector<SampleIndex>& samples) const
 bool
 Mesher::isTrueBoundary(double area, double perimeter, double spacing) const
 {
-  return perimeter > 0
-         && 2 * area / perimeter > parameters_.true_boundary_ratio * spacing;
+  return perimeter > 0 &&
+         2 * area / perimeter > parameters_.true_boundary_ratio * spacing;
 }
 
 // ---------------------------------------------------------------------------------
@@ -341,10 +357,10 @@ Mesher::removeLids()
   std::vector<std::uint8_t> oversized(pool_.size(), 0);
   for (std::uint32_t t = 0; t < pool_.size(); ++t) {
     const TriangleIndices& tri = pool_[t];
-    const double local
-        = std::max({spacing_[tri[0]], spacing_[tri[1]], spacing_[tri[2]]});
-    oversized[t] = circumradius(points_[tri[0]], points_[tri[1]], points_[tri[2]])
-                   > kOversized * local;
+    const double local =
+        std::max({spacing_[tri[0]], spacing_[tri[1]], spacing_[tri[2]]});
+    oversized[t] = circumradius(points_[tri[0]], points_[tri[1]], points_[tri[2]]) >
+                   kOversized * local;
   }
   // Boundary samples and the samples sharing a candidate with one.
   const std::vector<std::uint8_t>& boundary = report_.boundary_samples;
@@ -364,10 +380,9 @@ Mesher::removeLids()
     double area = 0, perimeter = 0;
     for (std::size_t head = 0; head < patch.size(); ++head) {
       const TriangleIndices& tri = pool_[patch[head]];
-      area += 0.5
-              * (points_[tri[1]] - points_[tri[0]])
-                    .cross(points_[tri[2]] - points_[tri[0]])
-                    .norm();
+      area += 0.5 * (points_[tri[1]] - points_[tri[0]])
+                        .cross(points_[tri[2]] - points_[tri[0]])
+                        .norm();
       for (int k = 0; k < 3; ++k) {
         const SampleIndex a = tri[k], b = tri[(k + 1) % 3];
         trianglesOnEdge(
@@ -417,8 +432,8 @@ Mesher::mustPrune(std::uint32_t t)
     trianglesOnEdge(
         a, b,
         [&](std::uint32_t s) {
-          return state_[s] == kInMesh
-                 || (state_[s] == kCandidate && group_[s] == group);
+          return state_[s] == kInMesh ||
+                 (state_[s] == kCandidate && group_[s] == group);
         },
         scratch_);
     if (scratch_.size() == 1) {
@@ -482,8 +497,8 @@ Mesher::prune(std::uint32_t group)
     if (state_[t] != kCandidate)
       continue;
     const TriangleIndices& tri = pool_[t];
-    if (group == kCoconeGroup
-        && (boundary[tri[0]] || boundary[tri[1]] || boundary[tri[2]]))
+    if (group == kCoconeGroup &&
+        (boundary[tri[0]] || boundary[tri[1]] || boundary[tri[2]]))
       continue; // protected
     if (!mustPrune(t))
       continue;
@@ -529,8 +544,10 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
       a, b,
       [&](std::uint32_t s) { return state_[s] == kCandidate && group_[s] == group; },
       around_);
-  if (around_.empty())
+  if (around_.empty()) {
+    maybe_open_.emplace_back(a, b);
     return {Step::done, 0};
+  }
   const Vector pa = points_[a];
   const Vector axis = (points_[b] - pa).normalized();
   Vector reference = points_[c] - pa;
@@ -553,18 +570,22 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
 
   // Guards: at most two triangles per edge, traversing it in opposite directions.
   bool x_attached = mesh_degree_[x] == 0;
-  const std::array<std::pair<SampleIndex, SampleIndex>, 2> new_edges
-      = {{{a, x}, {x, b}}};
+  const std::array<std::pair<SampleIndex, SampleIndex>, 2> new_edges = {
+      {{a, x}, {x, b}}};
   for (const auto& [from, to] : new_edges) {
     meshOnEdge(from, to, on_edge_);
-    if (on_edge_.size() >= 2
-        || (on_edge_.size() == 1 && traverses(on_edge_[0], from, to)))
+    if (on_edge_.size() >= 2 ||
+        (on_edge_.size() == 1 && traverses(on_edge_[0], from, to))) {
+      maybe_open_.emplace_back(a, b);
       return {Step::refused, best};
+    }
     if (on_edge_.size() == 1)
       x_attached = true; // x's fan continues through this boundary edge
   }
-  if (!x_attached && !allow_pinch)
-    return {Step::pinch, best}; // x has a fan elsewhere: this would pinch it, for now
+  if (!x_attached && !allow_pinch) {
+    maybe_open_.emplace_back(a, b); // unless a forced step closes it later
+    return {Step::pinch, best};     // x has a fan elsewhere: it would pinch, for now
+  }
   if (!x_attached)
     pinched_.push_back(x); // resolvePinches() looks at it again
 
@@ -654,13 +675,12 @@ Mesher::resolvePinches(std::vector<std::uint32_t>* removed)
     for (std::size_t i = 0; i < fan.size(); ++i) {
       if (label[i] == keep)
         continue;
-      state_[fan[i]] = kRejected;
+      leaveMesh(fan[i]);
       if (removed != nullptr)
         removed->push_back(fan[i]);
       else
         ++report_.pinch_removed_triangles;
       for (const SampleIndex w : oriented_[fan[i]]) {
-        --mesh_degree_[w];
         if (w != v && !queued[w]) {
           queued[w] = 1;
           work.push_back(w);
@@ -683,15 +703,15 @@ Mesher::seedTriangle(std::uint32_t& seed)
     std::iota(seed_order_.begin(), seed_order_.end(), 0u);
     std::sort(seed_order_.begin(), seed_order_.end(),
               [&](SampleIndex u, SampleIndex v) {
-                return points_[u].x() > points_[v].x()
-                       || (points_[u].x() == points_[v].x() && u < v);
+                return points_[u].x() > points_[v].x() ||
+                       (points_[u].x() == points_[v].x() && u < v);
               });
   }
   const auto is_free = [&](std::uint32_t t) {
     const TriangleIndices& tri = pool_[t];
-    return state_[t] == kCandidate && group_[t] == kCoconeGroup
-           && mesh_degree_[tri[0]] == 0 && mesh_degree_[tri[1]] == 0
-           && mesh_degree_[tri[2]] == 0;
+    return state_[t] == kCandidate && group_[t] == kCoconeGroup &&
+           mesh_degree_[tri[0]] == 0 && mesh_degree_[tri[1]] == 0 &&
+           mesh_degree_[tri[2]] == 0;
   };
   SampleIndex extreme = kNoSample;
   for (; seed_cursor_ < seed_order_.size(); ++seed_cursor_) {
@@ -730,8 +750,8 @@ Mesher::seedTriangle(std::uint32_t& seed)
         if (normal.dot(points_[v] - p) > 1e-12 * (points_[v] - p).norm())
           ++violations;
     }
-    if (violations < best_violations
-        || (violations == best_violations && normal.x() > best_alignment)) {
+    if (violations < best_violations ||
+        (violations == best_violations && normal.x() > best_alignment)) {
       best_violations = violations;
       best_alignment = normal.x();
       seed = t;
@@ -765,20 +785,21 @@ Mesher::walkAll()
 std::vector<std::vector<SampleIndex> >
 Mesher::traceLoops() const
 {
-  // Boundary edges a -> b, as the single mesh triangle on them traverses them.
+  // Boundary edges a -> b, as the single mesh triangle on them traverses them: found
+  // among the edges that may be open (see maybe_open_).
   std::vector<std::pair<SampleIndex, SampleIndex> > edges;
   std::vector<std::uint32_t> on_edge;
-  for (std::uint32_t t = 0; t < pool_.size(); ++t) {
-    if (state_[t] != kInMesh)
+  for (const auto& [a, b] : maybe_open_) {
+    meshOnEdge(a, b, on_edge);
+    if (on_edge.size() != 1)
       continue;
-    const TriangleIndices& o = oriented_[t];
-    for (int k = 0; k < 3; ++k) {
-      meshOnEdge(o[k], o[(k + 1) % 3], on_edge);
-      if (on_edge.size() == 1)
-        edges.emplace_back(o[k], o[(k + 1) % 3]);
-    }
+    if (traverses(on_edge[0], a, b))
+      edges.emplace_back(a, b);
+    else
+      edges.emplace_back(b, a);
   }
   std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   std::vector<std::uint8_t> used(edges.size(), 0);
   std::vector<std::vector<SampleIndex> > loops;
   for (std::size_t start = 0; start < edges.size(); ++start) {
@@ -942,9 +963,8 @@ Mesher::fillPolygon(std::vector<SampleIndex>& loop, double spacing)
       for (const std::uint32_t t : blockers)
         pinched_.insert(pinched_.end(), oriented_[t].begin(), oriented_[t].end());
       resolvePinches(&removed);
-      if (!traceLoopFrom(loop.front(), grown)
-          && !traceLoopFrom(mesh_degree_[loop.back()] ? loop.back() : loop.front(),
-                            grown))
+      if (!traceLoopFrom(loop.front(), grown) &&
+          !traceLoopFrom(mesh_degree_[loop.back()] ? loop.back() : loop.front(), grown))
         break;
       loop = grown;
       continue;
@@ -1046,9 +1066,8 @@ Mesher::closes(const std::vector<SampleIndex>& loop,
     const TriangleIndices& o = oriented_[t];
     for (int k = 0; k < 3; ++k) {
       meshOnEdge(o[k], o[(k + 1) % 3], on_edge);
-      if (on_edge.size() != 2
-          || traverses(on_edge[0], o[k], o[(k + 1) % 3])
-                 == traverses(on_edge[1], o[k], o[(k + 1) % 3]))
+      if (on_edge.size() != 2 || traverses(on_edge[0], o[k], o[(k + 1) % 3]) ==
+                                     traverses(on_edge[1], o[k], o[(k + 1) % 3]))
         return false;
       if (countFans(o[k]) != 1)
         return false;
@@ -1067,14 +1086,15 @@ Mesher::forEachCell(const TriangleIndices& t, F&& f) const
 {
   const Vector low = points_[t[0]].cwiseMin(points_[t[1]]).cwiseMin(points_[t[2]]);
   const Vector high = points_[t[0]].cwiseMax(points_[t[1]]).cwiseMax(points_[t[2]]);
-  const auto index
-      = [&](double x) { return static_cast<long>(std::floor(x / grid_cell_)); };
+  const auto index = [&](double x) {
+    return static_cast<long>(std::floor(x / grid_cell_));
+  };
   for (long x = index(low.x()); x <= index(high.x()); ++x)
     for (long y = index(low.y()); y <= index(high.y()); ++y)
       for (long z = index(low.z()); z <= index(high.z()); ++z)
-        f((static_cast<CellKey>(x & 0x1FFFFF) << 42)
-          | (static_cast<CellKey>(y & 0x1FFFFF) << 21)
-          | static_cast<CellKey>(z & 0x1FFFFF));
+        f((static_cast<CellKey>(x & 0x1FFFFF) << 42) |
+          (static_cast<CellKey>(y & 0x1FFFFF) << 21) |
+          static_cast<CellKey>(z & 0x1FFFFF));
 }
 
 void
@@ -1142,11 +1162,8 @@ Mesher::intersectsSurface(const std::vector<std::uint32_t>& added)
 void
 Mesher::undo(const std::vector<std::uint32_t>& added)
 {
-  for (const std::uint32_t t : added) {
-    state_[t] = kRejected;
-    for (const SampleIndex v : oriented_[t])
-      --mesh_degree_[v];
-  }
+  for (const std::uint32_t t : added)
+    leaveMesh(t);
 }
 
 // The triangulation of the loop polygon of least total area (dynamic programming over
@@ -1235,8 +1252,8 @@ Mesher::labelFans(SampleIndex v, std::vector<std::uint32_t>& fan,
     for (std::size_t j = i + 1; j < fan.size(); ++j)
       for (const SampleIndex w : pool_[fan[i]])
         if (w != v && contains(fan[j], w))
-          label[find(static_cast<std::uint32_t>(i))]
-              = find(static_cast<std::uint32_t>(j));
+          label[find(static_cast<std::uint32_t>(i))] =
+              find(static_cast<std::uint32_t>(j));
   std::size_t fans = 0;
   for (std::size_t i = 0; i < fan.size(); ++i) {
     label[i] = find(static_cast<std::uint32_t>(i));
@@ -1284,8 +1301,8 @@ Mesher::insertUnusedSamples()
     // neighbours are far.
     const Vector p = points_[v];
     const auto reach = [&](const TriangleIndices& o) {
-      return kInsertionReach
-             * std::min({spacing_[o[0]], spacing_[o[1]], spacing_[o[2]]});
+      return kInsertionReach *
+             std::min({spacing_[o[0]], spacing_[o[1]], spacing_[o[2]]});
     };
     double best_distance = std::numeric_limits<double>::infinity();
     std::uint32_t best = 0;
@@ -1299,8 +1316,8 @@ Mesher::insertUnusedSamples()
         continue;
       const Vector unit = normal / twice_area;
       const Vector q = p - (p - a).dot(unit) * unit; // projection on the plane
-      if ((b - a).cross(q - a).dot(unit) >= 0 && (c - b).cross(q - b).dot(unit) >= 0
-          && (a - c).cross(q - c).dot(unit) >= 0) {
+      if ((b - a).cross(q - a).dot(unit) >= 0 && (c - b).cross(q - b).dot(unit) >= 0 &&
+          (a - c).cross(q - c).dot(unit) >= 0) {
         const double distance = std::abs((p - a).dot(unit));
         if (distance < best_distance && distance < reach(o)) {
           best_distance = distance;
@@ -1335,8 +1352,8 @@ Mesher::insertUnusedSamples()
       meshOnEdge(e0, e1, nearby_edge);
       if (nearby_edge.size() != 2)
         continue;
-      const std::uint32_t other
-          = nearby_edge[0] == best ? nearby_edge[1] : nearby_edge[0];
+      const std::uint32_t other =
+          nearby_edge[0] == best ? nearby_edge[1] : nearby_edge[0];
       const SampleIndex apex_there = apex(other, e0, e1);
       replaced.push_back(other);
       // best traverses e0 -> e1, other e1 -> e0; keep both orientations.
@@ -1347,17 +1364,14 @@ Mesher::insertUnusedSamples()
     }
     bool crossing = false;
     for (const TriangleIndices& split : splits)
-      for (const std::uint32_t t : (meshNear(split, near_), near_))
-        if (std::find(replaced.begin(), replaced.end(), t) == replaced.end()
-            && trianglesIntersect(points_, split, oriented_[t]))
+      for (const std::uint32_t t : nearby)
+        if (std::find(replaced.begin(), replaced.end(), t) == replaced.end() &&
+            trianglesIntersect(points_, split, oriented_[t]))
           crossing = true;
     if (crossing)
       continue;
-    for (const std::uint32_t t : replaced) {
-      state_[t] = kRejected;
-      for (const SampleIndex w : oriented_[t])
-        --mesh_degree_[w];
-    }
+    for (const std::uint32_t t : replaced)
+      leaveMesh(t);
     for (const TriangleIndices& split : splits) {
       addToPool(split, kPolygonGroup);
       enterMesh(static_cast<std::uint32_t>(pool_.size() - 1));
@@ -1370,80 +1384,37 @@ Mesher::insertUnusedSamples()
 // The walk takes restricted Delaunay triangles, which cannot cross on a well-sampled
 // surface; where samples are undersampled or noisy (boundary samples), and where
 // triangles were added by stitching or insertion, nothing rules it out. Those
-// triangles are checked against every mesh triangle whose bounding box meets theirs
-// (a uniform grid over the suspects' cells), and of each crossing pair the one added
-// last is removed; the holes this leaves are stitched like the others (fills are
-// checked already). Returns the number of triangles removed.
+// triangles are checked against the mesh triangles at their corners' Delaunay
+// neighbours (what can reach them: a triangle crossing a small one has a corner next
+// to it), and of each crossing pair the one added last is removed; the holes this
+// leaves are stitched like the others (fills are checked already). Returns the number
+// of triangles removed.
 std::size_t
 Mesher::removeCrossings()
 {
-  using CellRange = Eigen::Array<long, 3, 1>;
   const std::vector<std::uint8_t>& boundary = report_.boundary_samples;
-  std::vector<std::uint32_t> mesh, suspects;
-  double edge_sum = 0;
+  std::vector<std::uint32_t> suspects, nearby;
   for (std::uint32_t t = 0; t < pool_.size(); ++t) {
-    if (state_[t] != kInMesh)
-      continue;
-    mesh.push_back(t);
     const TriangleIndices& o = oriented_[t];
-    edge_sum += (points_[o[0]] - points_[o[1]]).norm();
-    if (group_[t] != kCoconeGroup || boundary[o[0]] || boundary[o[1]] || boundary[o[2]])
+    if (state_[t] == kInMesh && (group_[t] != kCoconeGroup || boundary[o[0]] ||
+                                 boundary[o[1]] || boundary[o[2]]))
       suspects.push_back(t);
   }
-  if (suspects.empty())
-    return 0;
-  const double cell = 2 * edge_sum / static_cast<double>(mesh.size());
-  const auto key = [](long x, long y, long z) {
-    return (static_cast<std::uint64_t>(x & 0x1FFFFF) << 42)
-           | (static_cast<std::uint64_t>(y & 0x1FFFFF) << 21)
-           | static_cast<std::uint64_t>(z & 0x1FFFFF);
-  };
-  const auto cells = [&](std::uint32_t t, CellRange& low, CellRange& high) {
-    const TriangleIndices& o = oriented_[t];
-    const Vector a = points_[o[0]].cwiseMin(points_[o[1]]).cwiseMin(points_[o[2]]);
-    const Vector b = points_[o[0]].cwiseMax(points_[o[1]]).cwiseMax(points_[o[2]]);
-    low = (a.array() / cell).floor().cast<long>();
-    high = (b.array() / cell).floor().cast<long>();
-  };
-  // Only the suspects' cells: every pair with a suspect meets in one of them.
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t> > grid;
-  std::vector<std::uint8_t> suspect(pool_.size(), 0);
-  CellRange low, high;
-  for (const std::uint32_t t : suspects) {
-    suspect[t] = 1;
-    cells(t, low, high);
-    for (long x = low.x(); x <= high.x(); ++x)
-      for (long y = low.y(); y <= high.y(); ++y)
-        for (long z = low.z(); z <= high.z(); ++z)
-          grid[key(x, y, z)];
-  }
-  for (const std::uint32_t t : mesh) {
-    cells(t, low, high);
-    for (long x = low.x(); x <= high.x(); ++x)
-      for (long y = low.y(); y <= high.y(); ++y)
-        for (long z = low.z(); z <= high.z(); ++z) {
-          const auto found = grid.find(key(x, y, z));
-          if (found != grid.end())
-            found->second.push_back(t);
-        }
-  }
   std::vector<std::uint32_t> gone;
-  for (const auto& entry : grid) {
-    const std::vector<std::uint32_t>& here = entry.second;
-    for (std::size_t i = 0; i < here.size(); ++i)
-      for (std::size_t j = i + 1; j < here.size(); ++j) {
-        const std::uint32_t t = here[i], u = here[j];
-        if ((!suspect[t] && !suspect[u]) || state_[t] != kInMesh
-            || state_[u] != kInMesh)
-          continue;
-        if (!trianglesIntersect(points_, oriented_[t], oriented_[u]))
-          continue;
-        const std::uint32_t drop = std::max(t, u);
-        state_[drop] = kRejected;
-        for (const SampleIndex v : oriented_[drop])
-          --mesh_degree_[v];
-        gone.push_back(drop);
-      }
+  for (const std::uint32_t t : suspects) {
+    if (state_[t] != kInMesh)
+      continue;
+    meshAtNeighbours(oriented_[t], nearby);
+    for (const std::uint32_t u : nearby) {
+      if (u == t || state_[u] != kInMesh ||
+          !trianglesIntersect(points_, oriented_[t], oriented_[u]))
+        continue;
+      const std::uint32_t drop = std::max(t, u);
+      leaveMesh(drop);
+      gone.push_back(drop);
+      if (drop == t)
+        break;
+    }
   }
   // A removal can leave a vertex with two fans.
   for (const std::uint32_t t : gone)
@@ -1451,6 +1422,28 @@ Mesher::removeCrossings()
   resolvePinches();
   report_.crossing_triangles = gone.size();
   return gone.size();
+}
+
+// The mesh triangles at the corners of t and at their Delaunay neighbours.
+void
+Mesher::meshAtNeighbours(const TriangleIndices& t,
+                         std::vector<std::uint32_t>& nearby) const
+{
+  std::vector<SampleIndex> samples(t.begin(), t.end()), neighbours;
+  for (const SampleIndex v : t) {
+    voronoi_.delaunayNeighbours(v, neighbours);
+    samples.insert(samples.end(), neighbours.begin(), neighbours.end());
+  }
+  std::sort(samples.begin(), samples.end());
+  samples.erase(std::unique(samples.begin(), samples.end()), samples.end());
+  nearby.clear();
+  for (const SampleIndex v : samples)
+    forEachAround(v, [&](std::uint32_t u) {
+      if (state_[u] == kInMesh)
+        nearby.push_back(u);
+    });
+  std::sort(nearby.begin(), nearby.end());
+  nearby.erase(std::unique(nearby.begin(), nearby.end()), nearby.end());
 }
 
 // Closed components face outward: flip any whose signed volume is negative.
