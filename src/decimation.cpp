@@ -70,12 +70,12 @@ VoronoiCocone::decimate(double rho,
 {
   Impl& d = *impl_;
   levels = DecimationLevels();
-  if (d.status != Status::ok) {
-    d.message = "decimate() needs a successful compute() first";
+  if (d.vertex_of.empty() && d.unique_count > 0) {
+    d.message = "the triangulation was already consumed by an earlier decimate()";
     return Status::not_computed;
   }
-  if (d.vertex_of.empty()) {
-    d.message = "the triangulation was already consumed by an earlier decimate()";
+  if (d.status != Status::ok) {
+    d.message = "decimate() needs a successful compute() first";
     return Status::not_computed;
   }
   if (!(rho > 0) || !std::isfinite(rho)) {
@@ -248,7 +248,9 @@ VoronoiCocone::decimate(double rho,
   levels.removals = removals;
   if (progress)
     progress(1.0);
-  d.message.clear();
+  // The triangulation is gone: what needs it must not run on the leftovers.
+  d.status = Status::not_computed;
+  d.message = "the triangulation was consumed by decimate()";
   return Status::ok;
 }
 

@@ -482,6 +482,29 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
   for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
     vertices.push_back(v);
 
+  // The star of every vertex at once (cells by sample, infinite cells after the
+  // finite ones): one pass over the cells instead of a search per vertex, which
+  // measured twice as slow.
+  std::vector<CellHandle> all_cells(cells);
+  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c)
+    if (dt.is_infinite(c))
+      all_cells.push_back(c);
+  std::vector<std::uint32_t> star_offsets(n + 1, 0);
+  for (const CellHandle& c : all_cells)
+    for (int j = 0; j < 4; ++j)
+      if (!dt.is_infinite(c->vertex(j)))
+        ++star_offsets[c->vertex(j)->info() + 1];
+  for (std::size_t i = 0; i < n; ++i)
+    star_offsets[i + 1] += star_offsets[i];
+  std::vector<std::uint32_t> star_cells(star_offsets[n]);
+  {
+    std::vector<std::uint32_t> fill(star_offsets.begin(), star_offsets.end() - 1);
+    for (std::uint32_t k = 0; k < all_cells.size(); ++k)
+      for (int j = 0; j < 4; ++j)
+        if (!dt.is_infinite(all_cells[k]->vertex(j)))
+          star_cells[fill[all_cells[k]->vertex(j)->info()]++] = k;
+  }
+
   d.pole_vector.assign(n, Eigen::Vector3d::Zero());
   d.positive_pole.assign(n, Eigen::Vector3d::Zero());
   d.negative_pole.assign(n, Eigen::Vector3d::Zero());
@@ -492,15 +515,18 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
   // marks[c][j] bit i: vertex j of cell c marks facet i of c. Only the thread handling
   // vertex j writes that byte, so no synchronisation is needed.
   std::vector<std::array<std::uint8_t, 4>> marks(cells.size(), {0, 0, 0, 0});
-  tbb::enumerable_thread_specific<StarGatherer> gatherers;
+  tbb::enumerable_thread_specific<std::vector<CellHandle>> stars;
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, vertices.size(), 512),
       [&](const tbb::blocked_range<std::size_t>& range) {
-        StarGatherer& gatherer = gatherers.local();
+        std::vector<CellHandle>& star = stars.local();
         CellGeometry geometry;
         for (std::size_t k = range.begin(); k != range.end(); ++k) {
           const VertexHandle v = vertices[k];
-          const std::vector<CellHandle>& star = gatherer.gather(v);
+          star.clear();
+          for (std::uint32_t m = star_offsets[v->info()]; m < star_offsets[v->info() + 1];
+               ++m)
+            star.push_back(all_cells[star_cells[m]]);
           computePoles(dt, v, star, geometry);
           const SampleIndex s = v->info();
           d.pole_vector[s] = geometry.pole_vector;

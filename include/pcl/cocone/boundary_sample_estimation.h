@@ -1,4 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+/**
+ * \file
+ * pcl::BoundarySampleEstimation: algorithm BOUNDARY as a pcl::Feature.
+ */
 #pragma once
 
 #include <pcl/cocone/boundary_samples.h>
@@ -56,18 +60,25 @@ template <typename PointInT, typename PointOutT = pcl::Boundary>
 class BoundarySampleEstimation : public Feature<PointInT, PointOutT>
 {
 public:
+  /** \brief Shared pointer to a BoundarySampleEstimation. */
   using Ptr = shared_ptr<BoundarySampleEstimation<PointInT, PointOutT>>;
+  /** \brief Shared pointer to a const BoundarySampleEstimation. */
   using ConstPtr = shared_ptr<const BoundarySampleEstimation<PointInT, PointOutT>>;
+  /** \brief The output cloud type: a pcl::PointCloud of \a PointOutT. */
   using PointCloudOut = typename Feature<PointInT, PointOutT>::PointCloudOut;
 
+  /** \brief Default parameters: rho 0.99, alpha pi/6, theta pi/8, no band, automatic
+   * threads. */
   BoundarySampleEstimation() { Feature<PointInT, PointOutT>::feature_name_ = "BoundarySampleEstimation"; }
 
   /** \brief Set rho, the ratio bound of the flatness test r_p / h_p <= rho.
    * Dimensionless; default 0.99 (the paper's value for all its data); valid range
-   * (0, 10]. Smaller values flag more samples. Out of range: PCL_ERROR, unchanged. */
+   * (0, 10]. Smaller values flag more samples. Out of range: PCL_ERROR, unchanged.
+   * \param[in] rho the ratio bound, dimensionless, in (0, 10] */
   void
   setRatioBound(double rho);
-  /** \brief Get rho (see setRatioBound). */
+  /** \brief Get rho (see setRatioBound).
+   * \return the ratio bound, dimensionless, in (0, 10]; default 0.99 */
   double
   getRatioBound() const
   {
@@ -76,10 +87,12 @@ public:
 
   /** \brief Set alpha, the largest acute angle between pole lines of neighbouring flat
    * samples. Radians; default pi/6; valid range (0, pi/2]. Smaller values flag more
-   * samples near curved or sharp regions. Out of range: PCL_ERROR, unchanged. */
+   * samples near curved or sharp regions. Out of range: PCL_ERROR, unchanged.
+   * \param[in] alpha the normal agreement angle in radians, in (0, pi/2] */
   void
   setNormalAngle(double alpha);
-  /** \brief Get alpha (see setNormalAngle). */
+  /** \brief Get alpha (see setNormalAngle).
+   * \return the normal agreement angle in radians, in (0, pi/2]; default pi/6 */
   double
   getNormalAngle() const
   {
@@ -88,10 +101,12 @@ public:
 
   /** \brief Set theta, the cocone angle: the cocone of p is the part of its Voronoi
    * cell within theta of the plane orthogonal to the pole vector. Radians; default
-   * pi/8; valid range (0, pi/2). Out of range: PCL_ERROR, unchanged. */
+   * pi/8; valid range (0, pi/2). Out of range: PCL_ERROR, unchanged.
+   * \param[in] theta the cocone angle in radians, in (0, pi/2) */
   void
   setCoconeAngle(double theta);
-  /** \brief Get theta (see setCoconeAngle). */
+  /** \brief Get theta (see setCoconeAngle).
+   * \return the cocone angle in radians, in (0, pi/2); default pi/8 */
   double
   getCoconeAngle() const
   {
@@ -100,73 +115,91 @@ public:
 
   /** \brief Beyond the paper: also flag \a rings rings of cocone neighbours around the
    * boundary samples, giving a band along boundaries like pcl::BoundaryEstimation's.
-   * Default 0 (BOUNDARY as published); valid range 0 to 64. */
+   * In rings; default 0 (BOUNDARY as published); valid range 0 to 64. Out of range:
+   * PCL_ERROR, unchanged.
+   * \param[in] rings the number of rings, 0 to 64 */
   void
   setBoundaryBandRings(unsigned rings);
-  /** \brief Get the number of band rings (see setBoundaryBandRings). */
+  /** \brief Get the number of band rings (see setBoundaryBandRings).
+   * \return the number of rings, 0 to 64; default 0 */
   unsigned
   getBoundaryBandRings() const
   {
     return parameters_.band_rings;
   }
 
-  /** \brief Number of threads for the per-sample work; 0 (default) uses every core. */
+  /** \brief Number of threads for the per-sample work; 0 (default) uses every core.
+   * \param[in] threads the number of threads; 0 for automatic; any value is accepted */
   void
   setNumberOfThreads(unsigned threads)
   {
     threads_ = threads;
   }
-  /** \brief Get the number of threads (0: automatic). */
+  /** \brief Get the number of threads (see setNumberOfThreads).
+   * \return the number of threads; 0 (default) means automatic (every core) */
   unsigned
   getNumberOfThreads() const
   {
     return threads_;
   }
 
-  /** \name Per-point results of the last compute(), one entry per output row. */
+  /** \name Per-point results of the last compute()
+   * One entry per output row, i.e. per index of the selection (setIndices) in its
+   * order; row r describes input cloud point indices[r]. Empty after a run without a
+   * Voronoi diagram; a run that initCompute() refuses (e.g. no input) leaves
+   * them as they were. */
   /** \{ */
-  /** \brief 1 where the input point was finite and took part, 0 where it was skipped. */
+  /** \brief Which output rows have Voronoi values.
+   * \return per row: 1 where the input point was finite and took part, 0 where it was
+   *         skipped */
   const std::vector<std::uint8_t>&
   getValidity() const
   {
     return valid_;
   }
-  /** \brief Unit pole vectors (oriented towards the positive pole); NaN where invalid. */
+  /** \brief Pole vectors v_p, a normal estimate.
+   * \return per row: the unit pole vector (oriented towards the positive pole), in the
+   *         input frame; NaN where invalid */
   const std::vector<Eigen::Vector3f>&
   getPoleVectors() const
   {
     return pole_vectors_;
   }
-  /** \brief Heights h_p = |p- - p| in input units (local feature size estimate); NaN
-   * where invalid or where the cell has no negative pole. */
+  /** \brief Heights h_p = |p- - p|, an estimate of the local feature size.
+   * \return per row: the height in input units; NaN where invalid or where the cell
+   *         has no negative pole */
   const std::vector<float>&
   getHeights() const
   {
     return heights_;
   }
-  /** \brief Cocone radii r_p in input units; +infinity for an unbounded cocone; NaN
-   * where invalid. */
+  /** \brief Cocone radii r_p.
+   * \return per row: the radius in input units; +infinity for an unbounded cocone; NaN
+   *         where invalid */
   const std::vector<float>&
   getCoconeRadii() const
   {
     return radii_;
   }
-  /** \brief Ratios r_p / h_p; +infinity where h_p is undefined or r_p infinite; NaN
-   * where invalid. */
+  /** \brief Ratios r_p / h_p, compared with rho by the flatness test.
+   * \return per row: the ratio, dimensionless; +infinity where h_p is undefined or r_p
+   *         infinite; NaN where invalid */
   const std::vector<float>&
   getRatios() const
   {
     return ratios_;
   }
-  /** \brief Why the last run produced no result (one line, e.g. "all points are
-   * coplanar: no 3D Voronoi cell to measure"); empty after a successful run. The same
-   * text went to PCL_ERROR. */
+  /** \brief Why the last run produced no result. The same text went to PCL_ERROR.
+   * \return one line, e.g. "all points are coplanar: no 3D Voronoi cell to measure";
+   *         empty after a successful run */
   const std::string&
   getErrorMessage() const
   {
     return error_message_;
   }
-  /** \brief Number of boundary samples among the output rows. */
+  /** \brief Number of boundary samples among the output rows.
+   * \return the number of rows with boundary_point = 1 (a repeated index counts each
+   *         time) */
   std::size_t
   getNumberOfBoundarySamples() const
   {
@@ -183,10 +216,16 @@ protected:
   using Feature<PointInT, PointOutT>::fake_surface_;
 
   /** \brief Checks the input without asking for a search radius or k, and builds no
-   * search tree: the Delaunay triangulation replaces both. */
+   * search tree: the Delaunay triangulation replaces both.
+   * \return false (with PCL_ERROR and getErrorMessage()) without an input cloud, with
+   *         invalid indices, an empty cloud, or a search surface other than the input;
+   *         true otherwise */
   bool
   initCompute() override;
 
+  /** \brief Runs BOUNDARY on every finite input point and fills one row per index.
+   * \param[out] output the boundary flags, one row per index (already sized by
+   *             pcl::Feature::compute); emptied when no Voronoi diagram exists */
   void
   computeFeature(PointCloudOut& output) override;
 

@@ -18,10 +18,15 @@ namespace cocone {
 
 /** \brief Collects the finite points of \a cloud at \a indices as double-precision
  * samples.
+ * \tparam PointT a point type with x, y, z
  * \param[in] cloud the input cloud
- * \param[in] indices the cloud indices to consider, in order
- * \param[out] samples one entry per finite point, in the order of \a indices
- * \param[out] cloud_index for each sample, its index in \a cloud
+ * \param[in] indices the input cloud indices to consider, in order (each must be a
+ *            valid index of \a cloud; not checked)
+ * \param[out] samples one entry per finite point, in the order of \a indices, in input
+ *             units; its positions are the sample indices given to
+ *             VoronoiCocone::compute (cleared first)
+ * \param[out] cloud_index for each sample (same size as \a samples), its input cloud
+ *             index: maps sample indices back to input cloud indices (cleared first)
  * \return the number of points skipped because a coordinate is NaN or infinite */
 template <typename PointT>
 std::size_t

@@ -18,33 +18,43 @@
 namespace pcl {
 namespace cocone {
 
-/** \brief Parameters of the reconstruction (the cocone angle is the VoronoiCocone's). */
+/** \brief Parameters of the reconstruction (the cocone angle is the VoronoiCocone's).
+ * Defaults are those of CoconeReconstruction. */
 struct ReconstructionParameters
 {
-  /** BOUNDARY's parameters (rho, alpha); band_rings is ignored here. */
+  /** BOUNDARY's parameters (rho, alpha; see BoundaryParameters for units, defaults
+   * and ranges); band_rings is ignored here. */
   BoundaryParameters boundary;
   /** Detect boundary samples and let them cast no vote. Default true; false gives the
-   * original COCONE candidate rule (a triangle needs the marks of all its vertices). */
+   * original COCONE candidate rule (a triangle needs the marks of all its vertices).
+   * Either value is valid. */
   bool detect_boundary = true;
-  /** Close the holes that are not true boundaries. Default true. */
+  /** Close the holes that are not true boundaries. Default true; either value is
+   * valid. */
   bool stitch_holes = true;
   /** A hole is a true boundary, and stays open, when its size (twice its area over its
    * perimeter: the radius of a round hole, half the width of a long one) exceeds this
    * many local sample spacings; smaller holes are stitched. The same test removes
    * candidate triangles that cover such a hole. In local spacings (about 1.1 times
-   * sqrt(area / n) on evenly spread samples); default 2; valid range [0.5, 1000]. */
+   * sqrt(area / n) on evenly spread samples); default 2; valid range [0.5, 1000]
+   * (kTrueBoundaryRatioRange). */
   double true_boundary_ratio = 2;
 };
 
-/** \brief True when every value of \a parameters lies in its documented range. */
+/** \brief Checks the reconstruction's parameters against their ranges (parameters.h);
+ * boundary.band_rings is checked too, although the reconstruction ignores it.
+ * \param[in] parameters the values to check
+ * \return true when every value of \a parameters lies in its documented range */
 PCL_COCONE_EXPORT bool
 isValid(const ReconstructionParameters& parameters);
 
-/** \brief What a reconstruction did, stage by stage. Sample indices are those of the
- * VoronoiCocone. */
+/** \brief What a reconstruction did, stage by stage. Sample indices (SampleIndex) are
+ * those of the VoronoiCocone, i.e. positions in the array given to
+ * VoronoiCocone::compute. */
 struct ReconstructionReport
 {
-  /** BOUNDARY's flags, one per sample (all 0 when detection is off). */
+  /** BOUNDARY's flags, one per sample (indexed by SampleIndex): 1 for a boundary
+   * sample, 0 otherwise; all 0 when detection is off. */
   std::vector<std::uint8_t> boundary_samples;
   std::size_t candidate_triangles = 0; ///< Delaunay triangles chosen by the cocones
   /** Candidates removed because they covered a true boundary (a hole too small against
@@ -58,26 +68,29 @@ struct ReconstructionReport
   std::size_t stitched_holes = 0;      ///< holes closed by stitching
   std::size_t stitched_triangles = 0;  ///< triangles added to close them
   /** Samples left out by the extraction and put back by splitting the triangle they
-   * lie over (within half a local spacing). */
+   * lie over in three, or the edge they lie next to in two (within one local spacing
+   * of the surface there). */
   std::size_t inserted_samples = 0;
   /** Triangles removed because they crossed another one (undersampled or noisy parts);
    * their holes are stitched. */
   std::size_t crossing_triangles = 0;
   /** The boundary loops left open (true boundaries and holes that could not be closed),
-   * as vertex cycles oriented with the surface. */
+   * as cycles of representative sample indices oriented with the surface (the edge from
+   * the last back to the first closes a cycle). */
   std::vector<std::vector<SampleIndex>> open_loops;
-  /** Wall-clock seconds of each stage. */
+  /** \brief Wall-clock seconds of each stage. */
   struct Timings
   {
     double boundary = 0;   ///< BOUNDARY
     double candidates = 0; ///< candidates, local spacing and lids
-    double pruning = 0;
-    double walk = 0; ///< walk and pinch resolution
-    double stitching = 0;
-    double finishing = 0; ///< orientation, loops, unused samples
-  } timings;
-  /** Samples in no output triangle: duplicates (their representative is used instead),
-   * isolated outliers, and samples the manifold extraction had to leave out. */
+    double pruning = 0;    ///< pruning at sharp edges
+    double walk = 0;       ///< walk and pinch resolution
+    double stitching = 0;  ///< stitching, sample insertion, crossing removal
+    double finishing = 0;  ///< orientation, loops, unused samples
+  } timings;               ///< wall-clock seconds of each stage
+  /** Samples in no output triangle, as sample indices in ascending order: duplicates
+   * (their representative is used instead), isolated outliers, and samples the
+   * manifold extraction had to leave out. */
   std::vector<SampleIndex> unused_samples;
 };
 
@@ -88,14 +101,18 @@ struct ReconstructionReport
  * of triangles at sharp edges (never of triangles incident to a boundary sample, nor of
  * triangles that a flat sheet holds on an edge, so that small gaps cannot cascade);
  * manifold extraction by walking the outer side of the candidates, refusing any third
- * triangle on an edge and any second fan at a vertex; orientation outward on closed
- * components; stitching of the holes that are not true boundaries with Delaunay
- * triangles on the hole, by the same prune and walk.
- * \param[in] voronoi a VoronoiCocone on which compute() succeeded
- * \param[in] parameters see ReconstructionParameters (assumed valid)
- * \param[out] triangles oriented triangles of representative sample indices
- * \param[out] report the stages' numbers, open loops and unused samples
- * \return Status::ok, or not_computed when \a voronoi holds no diagram */
+ * triangle on an edge and any second fan at a vertex; stitching of the holes that are
+ * not true boundaries with Delaunay triangles on the hole, by the same prune and walk;
+ * putting back samples left out that lie on the surface; removal of triangles crossing
+ * another one (their holes stitched again); orientation outward on closed components.
+ * \param[in] voronoi a VoronoiCocone on which compute() succeeded and decimate() has
+ *            not run (decimate() consumes the triangulation)
+ * \param[in] parameters see ReconstructionParameters (assumed valid: see isValid)
+ * \param[out] triangles oriented triangles of representative sample indices (cleared
+ *             first)
+ * \param[out] report the stages' numbers, open loops and unused samples (reset first)
+ * \return Status::ok, or Status::not_computed when voronoi.status() is not ok (then
+ *         \a triangles and \a report stay empty) */
 PCL_COCONE_EXPORT Status
 reconstructSurface(const VoronoiCocone& voronoi,
                    const ReconstructionParameters& parameters,

@@ -1,4 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+/**
+ * \file
+ * pcl::CoconeReconstruction: COCONE with boundary detection as a pcl::MeshConstruction.
+ */
 #pragma once
 
 #include <pcl/cocone/cocone_mesher.h>
@@ -30,7 +34,9 @@ namespace pcl {
  *    outward;
  * 5. the holes left are stitched with Delaunay triangles (or, for a few vertices, the
  *    least-area triangulation of the hole), unless a hole is a true boundary: larger
- *    than the true-boundary ratio in sample spacings.
+ *    than the true-boundary ratio in sample spacings;
+ * 6. samples left out that lie on the surface are put back into the mesh, and
+ *    triangles crossing another one are removed (their holes stitched again).
  *
  * No k-d tree and no normals are needed. Works for closed surfaces, surfaces with
  * boundaries (partial scans, terrain) and sharp features.
@@ -51,16 +57,24 @@ template <typename PointInT>
 class CoconeReconstruction : public MeshConstruction<PointInT>
 {
 public:
+  /** \brief Shared pointer to a CoconeReconstruction. */
   using Ptr = shared_ptr<CoconeReconstruction<PointInT>>;
+  /** \brief Shared pointer to a const CoconeReconstruction. */
   using ConstPtr = shared_ptr<const CoconeReconstruction<PointInT>>;
 
+  /** \brief Default parameters (theta pi/8, rho 0.99, alpha pi/6, true-boundary ratio
+   * 2, boundary detection and hole stitching on, automatic threads); no search method
+   * is needed (setSearchMethod may be skipped). */
   CoconeReconstruction() { check_tree_ = false; }
 
-  /** \brief Set theta, the cocone angle. Radians; default pi/8 (the paper's value);
-   * valid range (0, pi/2). Out of range: PCL_ERROR, unchanged. */
+  /** \brief Set theta, the cocone angle: the cocone of p is the part of its Voronoi
+   * cell within theta of the plane orthogonal to the pole vector. Radians; default pi/8
+   * (the paper's value); valid range (0, pi/2). Out of range: PCL_ERROR, unchanged.
+   * \param[in] theta the cocone angle in radians, in (0, pi/2) */
   void
   setCoconeAngle(double theta);
-  /** \brief Get theta (see setCoconeAngle). */
+  /** \brief Get theta (see setCoconeAngle).
+   * \return the cocone angle in radians, in (0, pi/2); default pi/8 */
   double
   getCoconeAngle() const
   {
@@ -68,22 +82,27 @@ public:
   }
 
   /** \brief Set rho, BOUNDARY's ratio bound (r_p / h_p <= rho for flat samples).
-   * Dimensionless; default 0.99; valid range (0, 10]. Out of range: PCL_ERROR,
-   * unchanged. */
+   * Dimensionless; default 0.99; valid range (0, 10]. Smaller values flag more boundary
+   * samples. Out of range: PCL_ERROR, unchanged.
+   * \param[in] rho the ratio bound, dimensionless, in (0, 10] */
   void
   setRatioBound(double rho);
-  /** \brief Get rho (see setRatioBound). */
+  /** \brief Get rho (see setRatioBound).
+   * \return the ratio bound, dimensionless, in (0, 10]; default 0.99 */
   double
   getRatioBound() const
   {
     return parameters_.boundary.ratio_bound;
   }
 
-  /** \brief Set alpha, BOUNDARY's normal agreement angle. Radians; default pi/6; valid
-   * range (0, pi/2]. Out of range: PCL_ERROR, unchanged. */
+  /** \brief Set alpha, BOUNDARY's normal agreement angle: the largest acute angle
+   * between pole lines of neighbouring flat samples. Radians; default pi/6; valid range
+   * (0, pi/2]. Out of range: PCL_ERROR, unchanged.
+   * \param[in] alpha the normal agreement angle in radians, in (0, pi/2] */
   void
   setNormalAngle(double alpha);
-  /** \brief Get alpha (see setNormalAngle). */
+  /** \brief Get alpha (see setNormalAngle).
+   * \return the normal agreement angle in radians, in (0, pi/2]; default pi/6 */
   double
   getNormalAngle() const
   {
@@ -95,10 +114,12 @@ public:
    * spacings is a true boundary and stays open; smaller holes are stitched. In local
    * spacings (about 1.1 sqrt(area / n) on an even sample); default 2; valid range
    * [0.5, 1000]. Raise it to close larger holes (e.g. a scan's cut), lower it to keep
-   * smaller ones open. Out of range: PCL_ERROR, unchanged. */
+   * smaller ones open. Out of range: PCL_ERROR, unchanged.
+   * \param[in] ratio the size ratio, in local sample spacings, in [0.5, 1000] */
   void
   setTrueBoundaryRatio(double ratio);
-  /** \brief Get the true-boundary size ratio (see setTrueBoundaryRatio). */
+  /** \brief Get the true-boundary size ratio (see setTrueBoundaryRatio).
+   * \return the size ratio in local sample spacings, in [0.5, 1000]; default 2 */
   double
   getTrueBoundaryRatio() const
   {
@@ -106,108 +127,132 @@ public:
   }
 
   /** \brief Detect boundary samples and let them cast no vote (default true). Off gives
-   * the original COCONE, fine for densely sampled closed smooth surfaces only. */
+   * the original COCONE, fine for densely sampled closed smooth surfaces only.
+   * \param[in] enabled true to detect boundary samples (default), false for the
+   *            original COCONE */
   void
   setBoundaryDetection(bool enabled)
   {
     parameters_.detect_boundary = enabled;
   }
-  /** \brief Get whether boundary detection is on. */
+  /** \brief Get whether boundary detection is on (see setBoundaryDetection).
+   * \return true when boundary samples are detected; default true */
   bool
   getBoundaryDetection() const
   {
     return parameters_.detect_boundary;
   }
 
-  /** \brief Close the holes that are not true boundaries (default true). */
+  /** \brief Close the holes that are not true boundaries (default true).
+   * \param[in] enabled true to stitch holes smaller than the true-boundary ratio
+   *            (default), false to leave every hole open */
   void
   setHoleStitching(bool enabled)
   {
     parameters_.stitch_holes = enabled;
   }
-  /** \brief Get whether hole stitching is on. */
+  /** \brief Get whether hole stitching is on (see setHoleStitching).
+   * \return true when holes are stitched; default true */
   bool
   getHoleStitching() const
   {
     return parameters_.stitch_holes;
   }
 
-  /** \brief Number of threads for the per-sample work; 0 (default) uses every core. */
+  /** \brief Number of threads for the per-sample work; 0 (default) uses every core.
+   * \param[in] threads the number of threads; 0 for automatic; any value is accepted */
   void
   setNumberOfThreads(unsigned threads)
   {
     threads_ = threads;
   }
-  /** \brief Get the number of threads (0: automatic). */
+  /** \brief Get the number of threads (see setNumberOfThreads).
+   * \return the number of threads; 0 (default) means automatic (every core) */
   unsigned
   getNumberOfThreads() const
   {
     return threads_;
   }
 
-  /** \name Diagnostics of the last reconstruct() */
+  /** \name Diagnostics of the last reconstruct()
+   * A reconstruct() that initCompute() refuses (e.g. no input) leaves them as
+   * they were. */
   /** \{ */
-  /** \brief Boundary-sample flags, one per input cloud point (0 for points that did not
-   * take part). */
+  /** \brief Boundary-sample flags of BOUNDARY.
+   * \return one flag per input cloud point (indexed by input cloud index, size of the
+   *         input cloud): 1 for a boundary sample, 0 otherwise and for points that did
+   *         not take part (not selected, not finite, or no Voronoi diagram); all 0 when
+   *         boundary detection is off */
   const std::vector<std::uint8_t>&
   getBoundarySamples() const
   {
     return boundary_samples_;
   }
-  /** \brief Number of candidate triangles chosen by the cocones. */
+  /** \brief Number of candidate triangles chosen by the cocones.
+   * \return the number of candidates (ReconstructionReport::candidate_triangles) */
   std::size_t
   getNumberOfCandidateTriangles() const
   {
     return report_.candidate_triangles;
   }
-  /** \brief Number of candidates dropped because they covered a true boundary. */
+  /** \brief Number of candidates dropped because they covered a true boundary.
+   * \return the number of lid triangles (ReconstructionReport::lid_triangles) */
   std::size_t
   getNumberOfLidTriangles() const
   {
     return report_.lid_triangles;
   }
-  /** \brief Number of candidates pruned at sharp edges. */
+  /** \brief Number of candidates pruned at sharp edges.
+   * \return the number of pruned triangles (ReconstructionReport::pruned_triangles) */
   std::size_t
   getNumberOfPrunedTriangles() const
   {
     return report_.pruned_triangles;
   }
-  /** \brief Number of holes closed by stitching. */
+  /** \brief Number of holes closed by stitching.
+   * \return the number of stitched holes (ReconstructionReport::stitched_holes) */
   std::size_t
   getNumberOfStitchedHoles() const
   {
     return report_.stitched_holes;
   }
-  /** \brief Number of triangles added by stitching. */
+  /** \brief Number of triangles added by stitching.
+   * \return the number of stitched triangles
+   *         (ReconstructionReport::stitched_triangles) */
   std::size_t
   getNumberOfStitchedTriangles() const
   {
     return report_.stitched_triangles;
   }
-  /** \brief The boundary loops left open, as cycles of input cloud indices oriented
-   * with the surface. */
+  /** \brief The boundary loops left open (true boundaries and holes that could not be
+   * closed).
+   * \return one pcl::Vertices per loop: a cycle of input cloud indices oriented with
+   *         the surface (the edge from the last back to the first closes it) */
   const std::vector<pcl::Vertices>&
   getBoundaryLoops() const
   {
     return boundary_loops_;
   }
-  /** \brief Input cloud indices (among those selected) that are in no triangle:
-   * non-finite points, duplicates, outliers, samples the extraction left out. */
+  /** \brief The selected points that are in no triangle: non-finite points,
+   * duplicates, outliers, samples the extraction left out.
+   * \return input cloud indices (among those selected), ascending; after a run without
+   *         a Voronoi diagram, every selected index in selection order */
   const pcl::Indices&
   getUnusedIndices() const
   {
     return unused_indices_;
   }
-  /** \brief Why the last run produced no result (one line, e.g. "all points are
-   * coplanar: no 3D Voronoi cell to measure"); empty after a successful run. The same
-   * text went to PCL_ERROR. */
+  /** \brief Why the last run produced no result. The same text went to PCL_ERROR.
+   * \return one line, e.g. "all points are coplanar: no 3D Voronoi cell to measure";
+   *         empty after a successful run */
   const std::string&
   getErrorMessage() const
   {
     return error_message_;
   }
-  /** \brief The core's report of the last run (sample indices are positions among the
-   * finite selected points). */
+  /** \brief The core's report of the last run.
+   * \return the report; its sample indices are positions among the finite selected
+   *         points (in selection order), not input cloud indices */
   const cocone::ReconstructionReport&
   getReport() const
   {
@@ -220,15 +265,23 @@ protected:
   using MeshConstruction<PointInT>::input_;
   using MeshConstruction<PointInT>::indices_;
 
+  /** \brief Name used in messages.
+   * \return "CoconeReconstruction" */
   std::string
   getClassName() const override
   {
     return "CoconeReconstruction";
   }
 
+  /** \brief Reconstructs into output.polygons (pcl::MeshConstruction::reconstruct has
+   * already copied the input cloud into output.cloud).
+   * \param[out] output the mesh; its polygons' vertex ids are input cloud indices */
   void
   performReconstruction(pcl::PolygonMesh& output) override;
 
+  /** \brief Reconstructs the surface through the selected finite points.
+   * \param[out] polygons oriented triangles as input cloud indices (cleared first);
+   *             empty when no Voronoi diagram exists */
   void
   performReconstruction(std::vector<pcl::Vertices>& polygons) override;
 

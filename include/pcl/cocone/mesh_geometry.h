@@ -16,18 +16,27 @@
 namespace pcl {
 namespace cocone {
 
-/** \brief True when triangles \a a and \a b (indices into \a points) intersect other
- * than along the edge or at the vertex they share; touching counts as intersecting.
- * Exact predicates: the answer is right for any coordinates. */
+/** \brief Whether two triangles of a mesh intersect other than along the edge or at
+ * the vertex they share (shared by index); touching counts as intersecting. Exact
+ * predicates: the answer is right for any coordinates.
+ * \param[in] points the vertex coordinates (any unit)
+ * \param[in] a first triangle, as three indices into \a points
+ * \param[in] b second triangle, as three indices into \a points
+ * \return true when \a a and \a b intersect beyond their shared vertices; false
+ *         otherwise, and always when either triangle has no area (a repeated index or
+ *         collinear corners)
+ * \throws std::out_of_range for an index outside \a points */
 PCL_COCONE_EXPORT bool
 trianglesIntersect(const std::vector<Eigen::Vector3d>& points,
                    const TriangleIndices& a,
                    const TriangleIndices& b);
 
-/** \brief Number of pairs of triangles of \a triangles that intersect (see
- * trianglesIntersect); 0 for a mesh without self-intersection. Triangles without area
- * (a repeated index or collinear corners) are skipped. Bounding-box filtered:
- * O(T log T) for a well-spread mesh.
+/** \brief Counts the pairs of triangles of a mesh that intersect (see
+ * trianglesIntersect). Triangles without area (a repeated index or collinear corners)
+ * are skipped. Bounding-box filtered: O(T log T) for a well-spread mesh.
+ * \param[in] points the vertex coordinates (any unit)
+ * \param[in] triangles the mesh, as index triples into \a points
+ * \return the number of intersecting pairs; 0 for a mesh without self-intersection
  * \throws std::out_of_range for an index outside \a points */
 PCL_COCONE_EXPORT std::size_t
 countSelfIntersections(const std::vector<Eigen::Vector3d>& points,

@@ -15,15 +15,19 @@
 namespace pcl {
 namespace cocone {
 
-/** \brief A closed, open or half-open interval of valid values. */
+/** \brief A closed, open or half-open interval of valid values, in the unit of the
+ * parameter it bounds. */
 struct ParameterRange
 {
-  double low;
-  double high;
-  bool low_open;
-  bool high_open;
+  double low;     ///< lower end of the interval
+  double high;    ///< upper end of the interval
+  bool low_open;  ///< true: \a low is excluded, "(low, ..."; false: "[low, ..."
+  bool high_open; ///< true: \a high is excluded, "..., high)"; false: "..., high]"
 
-  /** \brief True when \a value lies in the interval (NaN never does). */
+  /** \brief Whether \a value lies in the interval.
+   * \param[in] value the value to test, in the parameter's unit
+   * \return true when \a value lies in the interval; false otherwise, and always for
+   *         NaN */
   constexpr bool
   contains(double value) const
   {
@@ -31,7 +35,9 @@ struct ParameterRange
            (high_open ? value < high : value <= high);
   }
 
-  /** \brief The interval as text, e.g. "(0, 10]". */
+  /** \brief The interval as text, for messages.
+   * \return the interval in mathematical notation, e.g. "(0, 10]" (printf's %g for the
+   *         ends) */
   std::string
   text() const
   {
@@ -42,20 +48,31 @@ struct ParameterRange
   }
 };
 
-/** Cocone angle theta, radians. */
+/** \brief Valid range of the cocone angle theta: (0, pi/2), radians. */
 constexpr ParameterRange kCoconeAngleRange{0, M_PI / 2, true, true};
-/** Ratio bound rho of BOUNDARY and DECIMATE, dimensionless. */
+/** \brief Valid range of the ratio bound rho of BOUNDARY and DECIMATE: (0, 10],
+ * dimensionless. */
 constexpr ParameterRange kRatioBoundRange{0, 10, true, false};
-/** Normal agreement angle alpha of BOUNDARY, radians. */
+/** \brief Valid range of the normal agreement angle alpha of BOUNDARY: (0, pi/2],
+ * radians. */
 constexpr ParameterRange kNormalAngleRange{0, M_PI / 2, true, false};
-/** True-boundary size ratio of the reconstruction, in local spacings. */
+/** \brief Valid range of the true-boundary size ratio of the reconstruction:
+ * [0.5, 1000], in local sample spacings. */
 constexpr ParameterRange kTrueBoundaryRatioRange{0.5, 1000, false, false};
-/** Rings of the optional boundary band. */
+/** \brief Valid range of the number of rings of the optional boundary band: [0, 64],
+ * rings of cocone neighbours. */
 constexpr ParameterRange kBandRingsRange{0, 64, false, false};
 
 /** \brief Whether \a value may be set; if not, says so with PCL_ERROR, e.g.
  * "[pcl::CoconeReconstruction::setRatioBound] rho = -1 is outside (0, 10]; keeping
- * 0.99." */
+ * 0.99."
+ * \param[in] class_name the class named in the message, e.g. "CoconeReconstruction"
+ * \param[in] setter the function named in the message, e.g. "setRatioBound"
+ * \param[in] name the parameter's name in the message, e.g. "rho"
+ * \param[in] value the value to check, in the parameter's unit
+ * \param[in] range the valid range of the parameter
+ * \param[in] current the value kept when \a value is refused (only printed)
+ * \return true when \a value lies in \a range; false (after PCL_ERROR) otherwise */
 inline bool
 acceptParameter(const std::string& class_name,
                 const char* setter,

@@ -35,8 +35,10 @@ namespace cocone {
  * unorganized (height 1) unless the file itself is organized (PCD), and keeps every
  * point, NaN ones included, in file order.
  * \param[in] path the file to read
- * \param[out] cloud the samples, with float fields x, y, z at least
- * \param[out] error if not null, receives a one-line reason on failure
+ * \param[out] cloud the samples, with float fields x, y, z at least, in the file's
+ *             units; point i is the i-th point (vertex) of the file
+ * \param[out] error if not null, receives a one-line reason on failure and is cleared
+ *             on success
  * \return true on success; false if the file is missing, unreadable, malformed, of an
  *         unknown extension, or has no point (the cloud is then empty) */
 PCL_COCONE_EXPORT bool
@@ -45,6 +47,12 @@ loadPointSamples(const std::string& path, pcl::PCLPointCloud2& cloud, std::strin
 /** \brief Reads the faces of a mesh file (`.ply`, `.obj`, `.off`) as polygons of vertex
  * indices (0-based, into the vertices loadPointSamples reads from the same file).
  * Polygons with more than three vertices are kept as they are.
+ * \param[in] path the mesh file to read; the format is chosen by the extension
+ *            (case-insensitive)
+ * \param[out] faces one polygon per face, in file order, with indices into the points
+ *             of the cloud loadPointSamples reads from \a path; empty on failure
+ * \param[out] error if not null, receives a one-line reason on failure and is cleared
+ *             on success
  * \return true on success (a file without faces gives an empty list); false if the file
  *         cannot be read or is not a mesh format */
 PCL_COCONE_EXPORT bool

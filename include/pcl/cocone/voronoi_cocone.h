@@ -21,6 +21,8 @@
 #include <vector>
 
 namespace pcl {
+/** \brief The non-template core of pcl_cocone (Voronoi geometry, BOUNDARY, COCONE
+ * meshing, DECIMATE) and its helpers (parameter ranges, file readers, mesh checks). */
 namespace cocone {
 
 /** \brief Index of a sample: its position in the point array given to
@@ -34,17 +36,20 @@ constexpr SampleIndex kNoSample = std::numeric_limits<SampleIndex>::max();
  * (VoronoiCocone::errorMessage); no exception crosses the core's boundary. */
 enum class Status
 {
-  ok,                   ///< the diagram was built
-  not_computed,         ///< compute() has not run (or failed) yet
+  ok,                   ///< success (for compute(): the diagram was built)
+  not_computed,         ///< no diagram: compute() not run or failed, or decimate() ran
   too_few_points,       ///< fewer than 4 distinct points
   non_finite_input,     ///< a coordinate is NaN or infinite
   degenerate_dimension, ///< all points are coplanar or collinear: there is no 3D cell
-  too_many_points,      ///< more points than a SampleIndex can address
+  too_many_points,      ///< 2^32 - 1 points or more: more than a SampleIndex addresses
   invalid_parameter,    ///< a parameter is outside its documented range
-  internal_error        ///< CGAL reported a failure or memory ran out
+  internal_error        ///< CGAL failed, memory ran out, or decimate() was cancelled
 };
 
-/** \brief Human-readable name of a status, e.g. "degenerate_dimension". */
+/** \brief Human-readable name of a status.
+ * \param[in] status the status to name
+ * \return the enumerator's name, e.g. "degenerate_dimension"; "unknown" for a value
+ *         outside the enumeration */
 PCL_COCONE_EXPORT const char*
 toString(Status status);
 
@@ -56,10 +61,12 @@ toString(Status status);
  * vertices are representative sample indices, in no particular order. */
 struct MarkedTriangle
 {
-  std::array<SampleIndex, 3> vertex;
-  std::uint8_t marked_by;
+  std::array<SampleIndex, 3> vertex; ///< the three vertices (representative samples)
+  std::uint8_t marked_by;            ///< bit k set: vertex[k]'s cocone marks it
 
-  /** \brief True when vertex[k] marks the triangle. */
+  /** \brief Whether the cocone of vertex[k] marks the triangle.
+   * \param[in] k position in #vertex, 0 to 2 (not a sample index)
+   * \return true when bit \a k of #marked_by is set */
   bool
   isMarkedBy(int k) const
   {
@@ -67,26 +74,38 @@ struct MarkedTriangle
   }
 };
 
-/** \brief A read-only view of a contiguous run of indices. */
+/** \brief A read-only view of a contiguous run of indices, usable in a range-based
+ * for loop. The index space is the producer's (VoronoiCocone::trianglesAround:
+ * positions in VoronoiCocone::markedTriangles()). The view points into the
+ * VoronoiCocone: it is valid until the next compute() or decimate(), or the object's
+ * destruction. */
 struct IndexRange
 {
-  const std::uint32_t* first = nullptr;
-  const std::uint32_t* last = nullptr;
+  const std::uint32_t* first = nullptr; ///< the first index; null for an empty default
+  const std::uint32_t* last = nullptr;  ///< one past the last index
+  /** \brief Start of the run.
+   * \return #first */
   const std::uint32_t*
   begin() const
   {
     return first;
   }
+  /** \brief End of the run.
+   * \return #last (one past the last index) */
   const std::uint32_t*
   end() const
   {
     return last;
   }
+  /** \brief Length of the run.
+   * \return the number of indices, last - first */
   std::size_t
   size() const
   {
     return static_cast<std::size_t>(last - first);
   }
+  /** \brief Whether the run is empty.
+   * \return true when there is no index */
   bool
   empty() const
   {
@@ -97,16 +116,21 @@ struct IndexRange
 /** \brief Result of DECIMATE: for every sample, the ratio bound from which on it is
  * removed.
  *
- * Sample i is kept by DECIMATE(P, rho) exactly when `level[i] >= rho`. Removed
- * duplicates get level 0. The levels nest: the set kept at a larger rho is a subset of
- * the set kept at a smaller one, and each is exactly what a separate run at that rho
- * returns (the removal order is the same prefix). Samples never removed get +infinity.
+ * For any rho in (0, largest_ratio_bound], sample i is kept by DECIMATE(P, rho)
+ * exactly when `level[i] >= rho` (removed for every larger rho). Duplicates get level
+ * 0 (never kept). The levels nest: the set kept at a larger rho is a subset of the set
+ * kept at a smaller one, and each is what a separate run at that rho returns (the
+ * removal order is the same prefix; the neighbour lists a run keeps depend on its rho,
+ * see src/decimation.cpp, and the tests find the sets identical). Samples not removed
+ * up to largest_ratio_bound get +infinity.
  */
 struct DecimationLevels
 {
-  std::vector<double> level;     ///< one entry per input sample
-  double largest_ratio_bound = 0; ///< the rho the run went up to
-  std::size_t removals = 0;       ///< Delaunay vertex removals performed
+  /** One entry per sample, indexed by SampleIndex (size VoronoiCocone::size());
+   * dimensionless like rho. */
+  std::vector<double> level;
+  double largest_ratio_bound = 0; ///< the rho the run went up to (dimensionless)
+  std::size_t removals = 0;       ///< samples removed (duplicates not counted)
 };
 
 /** \brief Voronoi cell geometry of a point sample: one 3D Delaunay triangulation, and per
@@ -137,30 +161,56 @@ struct DecimationLevels
 class PCL_COCONE_EXPORT VoronoiCocone
 {
 public:
+  /** \brief An empty object: status() is Status::not_computed, size() is 0, the cocone
+   * angle pi/8 and the number of threads 0 (automatic). */
   VoronoiCocone();
+  /** \brief Releases the triangulation. */
   ~VoronoiCocone();
+  /** \brief Takes over the triangulation and results of the moved-from object, which
+   * may afterwards only be assigned to or destroyed. */
   VoronoiCocone(VoronoiCocone&&) noexcept;
+  /** \brief Takes over the triangulation and results of the moved-from object, which
+   * may afterwards only be assigned to or destroyed.
+   * \return *this */
   VoronoiCocone&
   operator=(VoronoiCocone&&) noexcept;
+  /** \brief Not copyable (the object owns a triangulation); move it instead. */
   VoronoiCocone(const VoronoiCocone&) = delete;
+  /** \brief Not copyable (the object owns a triangulation); move it instead. */
   VoronoiCocone&
   operator=(const VoronoiCocone&) = delete;
 
-  /** \brief Cocone angle theta in radians. Default pi/8; valid range (0, pi/2). */
+  /** \brief Set theta, the cocone angle: the cocone of p is the part of its Voronoi
+   * cell within theta of the plane orthogonal to the pole vector. Radians; default
+   * pi/8; valid range (0, pi/2) (kCoconeAngleRange). Used by the next compute() and by
+   * decimate().
+   * \param[in] theta the cocone angle in radians
+   * \return Status::ok, or Status::invalid_parameter (and the angle is unchanged) when
+   *         \a theta is outside (0, pi/2); no message is printed */
   Status
   setCoconeAngle(double theta);
+  /** \brief Get theta, the cocone angle (see setCoconeAngle).
+   * \return the cocone angle in radians, in (0, pi/2) */
   double
   getCoconeAngle() const;
 
-  /** \brief Number of worker threads; 0 (default) lets TBB use every core. */
+  /** \brief Set the number of worker threads of compute() and decimate().
+   * \param[in] threads number of threads; 0 (default) lets TBB use every core; any
+   *            value is accepted */
   void
   setNumberOfThreads(unsigned threads);
+  /** \brief Get the number of worker threads (see setNumberOfThreads).
+   * \return the number of threads; 0 means automatic (every core) */
   unsigned
   getNumberOfThreads() const;
 
   /** \brief Builds the Delaunay triangulation of \a points and the per-sample geometry.
-   * \param[in] points the samples (any coordinates; no NaN or infinity)
-   * \return Status::ok, or the reason nothing was built (see errorMessage()). */
+   * Replaces the results of any earlier compute() (also when it fails).
+   * \param[in] points the samples (any coordinates, in input units; no NaN or
+   *            infinity); the position of a point in this array is its SampleIndex
+   * \return Status::ok, or the reason nothing was built (see errorMessage()):
+   *         Status::too_many_points, Status::non_finite_input, Status::too_few_points,
+   *         Status::degenerate_dimension or Status::internal_error */
   Status
   compute(const std::vector<Eigen::Vector3d>& points);
 
@@ -170,105 +220,169 @@ public:
     double delaunay = 0; ///< triangulation, duplicates included
     double geometry = 0; ///< circumcenters, poles, radii, marks, incidence lists
   };
+  /** \brief Durations of the last compute().
+   * \return the stages' wall-clock times in seconds; all 0 before compute() or after a
+   *         failed one */
   const Timings&
   timings() const;
 
-  /** \brief Status of the last compute() (decimate() returns its own). */
+  /** \brief Whether the diagram can be used.
+   * \return Status::ok after a successful compute(); Status::not_computed before any,
+   *         and after decimate() (which consumes the triangulation: the per-sample
+   *         values of the full sample remain readable, but BOUNDARY and the
+   *         reconstruction refuse to run); otherwise the reason the last compute()
+   *         failed */
   Status
   status() const;
 
-  /** \brief One-line explanation of the last failure; empty after success. */
+  /** \brief Explanation of the last failure of compute() or decimate().
+   * \return one line, e.g. "all points are coplanar: no 3D Voronoi cell to measure";
+   *         empty after success */
   const std::string&
   errorMessage() const;
 
-  /** \brief Number of samples given to compute(), duplicates included. */
+  /** \brief Number of samples given to compute(), duplicates included.
+   * \return the size of the array given to the last successful compute(): the valid
+   *         sample indices are 0 to size() - 1; 0 before compute() or after a
+   *         failure */
   std::size_t
   size() const;
 
-  /** \brief Number of distinct samples (Delaunay vertices). */
+  /** \brief Number of distinct samples (Delaunay vertices).
+   * \return the number of distinct points, at most size(); 0 before compute() or after
+   *         a failure */
   std::size_t
   numUniqueSamples() const;
 
-  /** \brief The smallest index whose point is identical to sample i (i itself unless i
-   * duplicates an earlier point). */
+  /** \brief The representative of a sample: the smallest index whose point is
+   * identical to sample \a i.
+   * \param[in] i a sample index, < size()
+   * \return a sample index: \a i itself unless \a i duplicates an earlier point */
   SampleIndex
   representative(SampleIndex i) const;
 
-  /** \brief The samples translated to their centroid (the frame CGAL works in). */
+  /** \brief The samples translated to their centroid (the frame CGAL works in).
+   * \return one point per sample (indexed by SampleIndex, duplicates included), in
+   *         input units: sample i = centeredPoints()[i] + offset() */
   const std::vector<Eigen::Vector3d>&
   centeredPoints() const;
 
-  /** \brief The translation applied: sample = centered point + offset(). */
+  /** \brief The translation applied: sample = centered point + offset().
+   * \return the centroid of the samples (duplicates included), in input units; zero
+   *         before compute() */
   const Eigen::Vector3d&
   offset() const;
 
-  /** \brief Unit pole vector v_p of sample i (oriented towards the positive pole). */
+  /** \brief Pole vector v_p of a sample.
+   * \param[in] i a sample index, < size() (a duplicate reads its representative's)
+   * \return the unit pole vector, oriented towards the positive pole (for an unbounded
+   *         cell: the normalized sum of the outward normals of the convex-hull
+   *         triangles at p) */
   const Eigen::Vector3d&
   poleVector(SampleIndex i) const;
 
-  /** \brief True when V_p is unbounded (p lies on the convex hull), so p+ is at
-   * infinity. */
+  /** \brief Whether the positive pole of a sample lies at infinity.
+   * \param[in] i a sample index, < size() (a duplicate reads its representative's)
+   * \return true when V_p is unbounded (p lies on the convex hull), so p+ is at
+   *         infinity */
   bool
   positivePoleAtInfinity(SampleIndex i) const;
 
-  /** \brief Positive pole in input coordinates; all components +infinity when it lies
-   * at infinity. */
+  /** \brief Positive pole p+ of a sample.
+   * \param[in] i a sample index, < size() (a duplicate reads its representative's)
+   * \return the pole in input coordinates; all components +infinity when it lies at
+   *         infinity */
   Eigen::Vector3d
   positivePole(SampleIndex i) const;
 
-  /** \brief Negative pole in input coordinates; NaN when V_p has no Voronoi vertex on
-   * the negative side of v_p. */
+  /** \brief Negative pole p- of a sample.
+   * \param[in] i a sample index, < size() (a duplicate reads its representative's)
+   * \return the pole in input coordinates; all components NaN when V_p has no Voronoi
+   *         vertex on the negative side of v_p */
   Eigen::Vector3d
   negativePole(SampleIndex i) const;
 
-  /** \brief Height h_p = |p- - p| in input units; NaN when there is no negative pole. */
+  /** \brief Height h_p = |p- - p| of a sample, an estimate of the local feature size.
+   * \param[in] i a sample index, < size() (a duplicate reads its representative's)
+   * \return the height in input units, > 0; NaN when there is no negative pole */
   double
   height(SampleIndex i) const;
 
-  /** \brief Cocone radius r_p in input units; +infinity for an unbounded cocone. */
+  /** \brief Cocone radius r_p of a sample, as computed by compute() (decimate() does
+   * not change it).
+   * \param[in] i a sample index, < size() (a duplicate reads its representative's)
+   * \return the radius in input units, >= 0; +infinity for an unbounded cocone */
   double
   coconeRadius(SampleIndex i) const;
 
-  /** \brief r_p / h_p; +infinity when h_p is undefined or r_p infinite. */
+  /** \brief Ratio r_p / h_p of a sample (see coconeRadius and height).
+   * \param[in] i a sample index, < size() (a duplicate reads its representative's)
+   * \return the ratio, dimensionless, >= 0; +infinity when h_p is undefined or r_p
+   *         infinite */
   double
   ratio(SampleIndex i) const;
 
-  /** \brief The Delaunay triangles marked by the cocone of at least one vertex. */
+  /** \brief The Delaunay triangles marked by the cocone of at least one vertex.
+   * \return the marked triangles (vertices are representative sample indices); empty
+   *         before compute() and after decimate() */
   const std::vector<MarkedTriangle>&
   markedTriangles() const;
 
-  /** \brief Indices into markedTriangles() of the triangles incident to sample i
-   * (marked by i or by another vertex). Duplicates read their representative's. */
+  /** \brief The marked triangles incident to a sample (marked by it or by another
+   * vertex). Duplicates read their representative's.
+   * \param[in] i a sample index, < size()
+   * \return indices into markedTriangles() (not sample indices); empty before compute()
+   *         and after decimate() */
   IndexRange
   trianglesAround(SampleIndex i) const;
 
   /** \brief Cocone neighbours N_p of sample i: the samples whose Voronoi cell meets
-   * C_p, i.e. the other vertices of the triangles that i marks. Sorted, without
-   * duplicates, representatives only. */
+   * C_p, i.e. the other vertices of the triangles that i marks.
+   * \param[in] i a sample index, < size() (a duplicate reads its representative's)
+   * \param[out] neighbours representative sample indices, sorted, without repeats
+   *             (cleared first); empty after decimate() */
   void
   coconeNeighbours(SampleIndex i, std::vector<SampleIndex>& neighbours) const;
 
-  /** \brief The samples sharing a Delaunay edge with sample i (representatives only). */
+  /** \brief The samples sharing a finite Delaunay edge with sample i.
+   * \param[in] i a sample index, < size() (a duplicate reads its representative's)
+   * \param[out] neighbours representative sample indices, sorted (cleared first); empty
+   *             before compute() and after decimate() */
   void
   delaunayNeighbours(SampleIndex i, std::vector<SampleIndex>& neighbours) const;
 
-  /** \brief Every finite Delaunay triangle whose three vertices all lie in \a samples
-   * (representative indices). Each triangle is reported once, vertices ascending. */
+  /** \brief Every finite Delaunay triangle whose three vertices all lie in \a samples.
+   * \param[in] samples sample indices, each < size(), in any order; duplicates stand
+   *            for their representatives
+   * \param[out] triangles the triangles as representative sample indices, ascending
+   *             within each triangle, each triangle reported once, sorted (cleared
+   *             first); empty before compute() and after decimate() */
   void
   delaunayTrianglesAmong(const std::vector<SampleIndex>& samples,
                          std::vector<std::array<SampleIndex, 3>>& triangles) const;
 
   /** \brief Runs DECIMATE (paper section 4) up to the ratio bound \a rho.
    *
-   * Heights and pole vectors stay those of the full sample; cocone radii are updated
-   * only for the samples whose Voronoi cell a removal changed; the sample with the
-   * smallest ratio goes first (ties by index), and the triangulation is updated in
-   * place. The triangulation is consumed: afterwards only the per-sample values of the
-   * full sample, and \a levels, remain meaningful (markedTriangles() is cleared).
-   * \param[in] rho the largest ratio bound of interest, > 0
-   * \param[out] levels per-sample removal levels (see DecimationLevels)
-   * \param[in] progress optional callback, called with the share done in [0, 1];
-   *            returning false cancels (Status::internal_error, "cancelled"). */
+   * Heights and pole vectors stay those of the full sample; cocone radii are measured
+   * again only for the samples whose Voronoi cell a removal changed; the sample with
+   * the smallest ratio goes first (ties by the smaller sample index), and the run stops
+   * when no remaining sample has a ratio below \a rho or only 4 distinct samples are
+   * left. The cells are kept up to date from Delaunay neighbour lists, not from the
+   * triangulation, which is consumed: afterwards only the per-sample values of the full
+   * sample, and \a levels, remain meaningful (markedTriangles() is cleared, the
+   * neighbour queries return nothing, and a second decimate() returns
+   * Status::not_computed).
+   * \param[in] rho the largest ratio bound of interest, dimensionless, finite and > 0
+   *            (the classes limit it to (0, 10])
+   * \param[out] levels per-sample removal levels, indexed by SampleIndex (see
+   *             DecimationLevels); reset first
+   * \param[in] progress optional callback, called with the share done in [0, 1] every
+   *            1024 removals and with 1 at the end; returning false cancels
+   *            (Status::internal_error, errorMessage() "cancelled")
+   * \return Status::ok; Status::not_computed without a successful compute() or after
+   *         an earlier decimate(); Status::invalid_parameter for a bad \a rho;
+   *         Status::internal_error when cancelled or out of memory (see
+   *         errorMessage()) */
   Status
   decimate(double rho,
            DecimationLevels& levels,

@@ -1,4 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+/**
+ * \file
+ * pcl::VoronoiDecimation: algorithm DECIMATE as a pcl::FilterIndices.
+ */
 #pragma once
 
 #include <pcl/cocone/export.h>
@@ -41,10 +45,14 @@ template <typename PointT>
 class VoronoiDecimation : public FilterIndices<PointT>
 {
 public:
+  /** \brief Shared pointer to a VoronoiDecimation. */
   using Ptr = shared_ptr<VoronoiDecimation<PointT>>;
+  /** \brief Shared pointer to a const VoronoiDecimation. */
   using ConstPtr = shared_ptr<const VoronoiDecimation<PointT>>;
 
-  /** \param[in] extract_removed_indices whether getRemovedIndices() is filled */
+  /** \brief Default parameters: rho 0.3, theta pi/8, automatic threads.
+   * \param[in] extract_removed_indices whether getRemovedIndices() is filled (default
+   *            false) */
   explicit VoronoiDecimation(bool extract_removed_indices = false)
   : FilterIndices<PointT>(extract_removed_indices)
   {
@@ -54,34 +62,41 @@ public:
   /** \brief Set rho: samples with r_p / h_p below it are removed, smallest first.
    * Dimensionless; default 0.3; valid range (0, 10], useful range 0.25 to 0.4 (the
    * paper removed 56% to 83% of its scans at 0.3 and 65% to 89% at 0.4). Out of range:
-   * PCL_ERROR, unchanged. */
+   * PCL_ERROR, unchanged.
+   * \param[in] rho the ratio bound, dimensionless, in (0, 10] */
   void
   setRatioBound(double rho);
-  /** \brief Get rho (see setRatioBound). */
+  /** \brief Get rho (see setRatioBound).
+   * \return the ratio bound, dimensionless, in (0, 10]; default 0.3 */
   double
   getRatioBound() const
   {
     return ratio_bound_;
   }
 
-  /** \brief Set theta, the cocone angle. Radians; default pi/8; valid range (0, pi/2).
-   * Out of range: PCL_ERROR, unchanged. */
+  /** \brief Set theta, the cocone angle: the cocone of p is the part of its Voronoi
+   * cell within theta of the plane orthogonal to the pole vector. Radians; default
+   * pi/8; valid range (0, pi/2). Out of range: PCL_ERROR, unchanged.
+   * \param[in] theta the cocone angle in radians, in (0, pi/2) */
   void
   setCoconeAngle(double theta);
-  /** \brief Get theta (see setCoconeAngle). */
+  /** \brief Get theta (see setCoconeAngle).
+   * \return the cocone angle in radians, in (0, pi/2); default pi/8 */
   double
   getCoconeAngle() const
   {
     return cocone_angle_;
   }
 
-  /** \brief Number of threads for the per-sample work; 0 (default) uses every core. */
+  /** \brief Number of threads for the per-sample work; 0 (default) uses every core.
+   * \param[in] threads the number of threads; 0 for automatic; any value is accepted */
   void
   setNumberOfThreads(unsigned threads)
   {
     threads_ = threads;
   }
-  /** \brief Get the number of threads (0: automatic). */
+  /** \brief Get the number of threads (see setNumberOfThreads).
+   * \return the number of threads; 0 (default) means automatic (every core) */
   unsigned
   getNumberOfThreads() const
   {
@@ -89,27 +104,35 @@ public:
   }
 
   /** \brief Nested subsets for several ratio bounds from one run (up to the largest).
-   * \param[in] ratio_bounds the values of rho, each in (0, 10]
-   * \param[out] kept for each value, the kept input cloud indices (in selection order);
-   *             a larger rho keeps a subset of what a smaller one keeps
-   * \return false (with PCL_ERROR) on bad input or parameters */
+   * Does not change the ratio bound of setRatioBound; ignores setNegative. Fills
+   * getRemovalLevels() like filter() does.
+   * \param[in] ratio_bounds the values of rho, dimensionless, each in (0, 10], in any
+   *            order
+   * \param[out] kept for each value (same order as \a ratio_bounds), the kept input
+   *             cloud indices (in selection order); a larger rho keeps a subset of what
+   *             a smaller one keeps. Cleared first; empty on failure
+   * \return true on success, also for an empty \a ratio_bounds (then nothing is
+   *         computed); false (with PCL_ERROR) on bad input or parameters */
   bool
   computeLevelsOfDetail(const std::vector<double>& ratio_bounds,
                         std::vector<pcl::Indices>& kept);
 
   /** \brief After filter() or computeLevelsOfDetail(): for each input cloud point, the
    * ratio bound from which on it is removed (kept at rho exactly when its level is >=
-   * rho); +infinity for points no run removed, 0 for duplicates, NaN for points not
-   * selected or not finite. */
+   * rho, for rho up to the bound the run went to).
+   * \return one level per input cloud point (indexed by input cloud index, size of the
+   *         input cloud), dimensionless: +infinity for points the run did not remove, 0
+   *         for duplicates, NaN for points not selected or not finite, and for every
+   *         point after a run without a Voronoi diagram */
   const std::vector<double>&
   getRemovalLevels() const
   {
     return removal_levels_;
   }
 
-  /** \brief Why the last run produced no result (one line, e.g. "all points are
-   * coplanar: no 3D Voronoi cell to measure"); empty after a successful run. The same
-   * text went to PCL_ERROR. */
+  /** \brief Why the last run produced no result. The same text went to PCL_ERROR.
+   * \return one line, e.g. "all points are coplanar: no 3D Voronoi cell to measure";
+   *         empty after a successful run */
   const std::string&
   getErrorMessage() const
   {
@@ -124,6 +147,10 @@ protected:
   using PCLBase<PointT>::indices_;
   using Filter<PointT>::getClassName;
 
+  /** \brief Runs DECIMATE up to the ratio bound on the selected points.
+   * \param[out] indices the kept input cloud indices in selection order (with
+   *             setNegative(true): the removed finite ones); never a non-finite point;
+   *             empty when no Voronoi diagram exists */
   void
   applyFilter(Indices& indices) override;
 
