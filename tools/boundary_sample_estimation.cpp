@@ -38,7 +38,7 @@ commandLine()
        {"-band", ValueKind::integer, "K",
         "also flag K rings of cocone neighbours around the boundary samples, for a "
         "band like pcl::BoundaryEstimation's; 0 is BOUNDARY as published",
-        0, "", Range{0, 64, false, false, "[0, 64]"}},
+        0, "", pcl::cocone::kBandRingsRange},
        flagOption("-rgb",
         "also write an rgb field: red for boundary samples, grey for the others, so "
         "that pcl_viewer shows them as in the paper's figure 4"),
@@ -65,11 +65,13 @@ compute(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLine& 
 
   pcl::PointCloud<pcl::Boundary> flags;
   computeStage("boundary samples", "boundary samples",
-               [&]() -> std::optional<std::size_t> {
+               [&](std::string& reason) -> std::optional<std::size_t> {
                  estimation.compute(flags);
                  // Every failure (e.g. coplanar input) leaves the output empty.
-                 if (flags.size() != xyz->size())
+                 if (flags.size() != xyz->size()) {
+                   reason = estimation.getErrorMessage();
                    return std::nullopt;
+                 }
                  return estimation.getNumberOfBoundarySamples();
                });
 

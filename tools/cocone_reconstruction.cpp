@@ -38,7 +38,7 @@ commandLine()
        {"-boundary_ratio", ValueKind::real, "B",
         "a hole larger than B local sample spacings is a true boundary and stays open; "
         "smaller holes are stitched; raise it to close a scan's cut",
-        2, "", Range{0.5, 1000, false, false, "[0.5, 1000]"}},
+        2, "", pcl::cocone::kTrueBoundaryRatioRange},
        flagOption("-no_boundary",
         "no boundary detection: the original COCONE, for densely sampled closed "
         "smooth surfaces only"),
@@ -70,13 +70,17 @@ reconstruct(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLi
                     (cocone.getHoleStitching() ? "on" : "off"));
 
   std::vector<pcl::Vertices> polygons;
-  computeStage("the COCONE surface", "triangles", [&]() -> std::optional<std::size_t> {
-    cocone.reconstruct(polygons);
-    // Coplanar input and the like give no polygon; so would a cloud without surface.
-    if (polygons.empty())
-      return std::nullopt;
-    return polygons.size();
-  });
+  computeStage("the COCONE surface", "triangles",
+               [&](std::string& reason) -> std::optional<std::size_t> {
+                 cocone.reconstruct(polygons);
+                 // Coplanar input and the like give no polygon; so would a cloud
+                 // without surface (no reason then: "empty result").
+                 if (polygons.empty()) {
+                   reason = cocone.getErrorMessage();
+                   return std::nullopt;
+                 }
+                 return polygons.size();
+               });
 
   if (cmd.verbose()) {
     const pcl::cocone::ReconstructionReport& report = cocone.getReport();

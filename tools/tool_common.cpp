@@ -7,8 +7,6 @@
 #include <pcl/conversions.h>
 #include <pcl/io/pcd_io.h>
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -18,9 +16,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <exception>
 #include <filesystem>
-#include <iostream>
 #include <system_error>
 
 namespace pcl {
@@ -36,10 +32,10 @@ using pcl::console::print_info;
 using pcl::console::print_value;
 
 // Process-wide console state: fail() must know whether a stage line is open on stdout,
-// and the name to put in front of its message.
+// and the name to put in front of its message; Stage and QuietPcl whether -v was given.
 std::string program_name = "error";
 bool stage_open = false;
-bool verbose_stages = false;
+bool verbose_run = false;
 
 constexpr std::size_t help_column = 24; // where option descriptions start
 constexpr std::size_t help_width = 88;
@@ -66,25 +62,6 @@ lowerCase(std::string text)
   std::transform(text.begin(), text.end(), text.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return text;
-}
-
-/** Removes ANSI colour sequences (ESC [ ... letter): PCL colours its messages when the
- * stream was a terminal the first time it printed, even if it no longer is. */
-std::string
-withoutColours(const std::string& text)
-{
-  std::string out;
-  out.reserve(text.size());
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    if (text[i] == '\x1b' && i + 1 < text.size() && text[i + 1] == '[') {
-      i += 2;
-      while (i < text.size() && !std::isalpha(static_cast<unsigned char>(text[i])))
-        ++i;
-      continue;
-    }
-    out += text[i];
-  }
-  return out;
 }
 
 // Spaces that printWrapped must not break at, e.g. inside "(0, 10]".
@@ -132,6 +109,13 @@ defaultText(const Option& option)
   return formatNumber(option.default_value);
 }
 
+/** The valid range as shown in the help and the errors, e.g. "(0, 10]". */
+std::string
+rangeText(const Option& option)
+{
+  return option.range_text.empty() ? option.range.text() : option.range_text;
+}
+
 /** The value \a text of \a option, checked; fails with the option's name otherwise. */
 double
 parseValue(const Option& option, const std::string& text)
@@ -143,7 +127,7 @@ parseValue(const Option& option, const std::string& text)
     const auto [end, ec] = std::from_chars(text.data(), last, number);
     if (text.empty() || ec != std::errc() || end != last)
       fail(option.name + ": " + inQuotes(text) +
-           " is not an integer (expected an integer in " + option.range.text + ")");
+           " is not an integer (expected an integer in " + rangeText(option) + ")");
     value = static_cast<double>(number);
   }
   else {
@@ -156,11 +140,11 @@ parseValue(const Option& option, const std::string& text)
                        *end == '\0';
     if (!whole || errno == ERANGE || !std::isfinite(value))
       fail(option.name + ": " + inQuotes(text) +
-           " is not a number (expected a value in " + option.range.text + ")");
+           " is not a number (expected a value in " + rangeText(option) + ")");
   }
   if (!option.range.contains(value))
     fail(option.name + ": " + text + " is outside the valid range " +
-         option.range.text);
+         rangeText(option));
   return value;
 }
 
@@ -313,6 +297,9 @@ writeFile(const std::string& path, const std::string& contents)
 void
 fail(const std::string& message)
 {
+  // Even from within a QuietPcl scope, the message (and "[failed]") must show.
+  if (pcl::console::getVerbosityLevel() < pcl::console::L_INFO)
+    pcl::console::setVerbosityLevel(pcl::console::L_INFO);
   if (stage_open) {
     print_info("[failed]\n");
     stage_open = false;
@@ -322,117 +309,24 @@ fail(const std::string& message)
   std::exit(EXIT_FAILURE);
 }
 
-std::string
-captureStderr(const std::function<void()>& work)
+QuietPcl::QuietPcl()
+: previous_(pcl::console::getVerbosityLevel())
 {
-  std::fflush(stderr);
-  std::FILE* sink = std::tmpfile();
-  const int saved = sink ? ::dup(STDERR_FILENO) : -1;
-  if (saved < 0 || ::dup2(::fileno(sink), STDERR_FILENO) < 0) {
-    // Without a place to capture to, the messages go through as they are.
-    if (saved >= 0)
-      ::close(saved);
-    if (sink)
-      std::fclose(sink);
-    work();
-    return {};
-  }
-  const auto restore = [&] {
-    std::cerr.flush();
-    std::fflush(stderr);
-    ::dup2(saved, STDERR_FILENO);
-    ::close(saved);
-  };
-  try {
-    work();
-  }
-  catch (...) {
-    restore();
-    std::fclose(sink);
-    throw;
-  }
-  restore();
-
-  std::string captured;
-  std::rewind(sink);
-  char buffer[4096];
-  std::size_t n;
-  while ((n = std::fread(buffer, 1, sizeof buffer, sink)) > 0)
-    captured.append(buffer, n);
-  std::fclose(sink);
-  return withoutColours(captured);
+  if (!verbose_run)
+    pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
 }
 
-void
-replayStderr(const std::string& captured)
+QuietPcl::~QuietPcl()
 {
-  if (!captured.empty()) {
-    std::fwrite(captured.data(), 1, captured.size(), stderr);
-    std::fflush(stderr);
-  }
-}
-
-std::string
-reasonFrom(const std::string& captured, const std::string& fallback)
-{
-  std::string line;
-  std::size_t end = captured.size();
-  while (line.empty() && end > 0) {
-    const std::size_t start = captured.rfind('\n', end - 1);
-    const std::size_t first = (start == std::string::npos) ? 0 : start + 1;
-    line = captured.substr(first, end - first);
-    line.erase(0, line.find_first_not_of(" \t\r"));
-    line.erase(line.find_last_not_of(" \t\r") + 1);
-    end = (start == std::string::npos) ? 0 : start;
-  }
-  if (line.empty())
-    return fallback;
-  // "[pcl::CoconeReconstruction::reconstruct] all points are coplanar." -> the reason.
-  if (line.front() == '[') {
-    const std::size_t close = line.find("] ");
-    if (close != std::string::npos)
-      line.erase(0, close + 2);
-  }
-  if (!line.empty() && line.back() == '.')
-    line.pop_back();
-  return line.empty() ? fallback : line;
+  pcl::console::setVerbosityLevel(previous_);
 }
 
 // ---------------------------------------------------------------------------------
 
-bool
-Range::contains(double value) const
-{
-  const bool above = low_open ? value > low : value >= low;
-  const bool below = high_open ? value < high : value <= high;
-  return above && below;
-}
-
-const Range&
-ratioBoundRange()
-{
-  static const Range range{0, 10, true, false, "(0, 10]"};
-  return range;
-}
-
-const Range&
-coconeAngleRange()
-{
-  static const Range range{0, M_PI / 2, true, true, "(0, pi/2)"};
-  return range;
-}
-
-const Range&
-normalAngleRange()
-{
-  static const Range range{0, M_PI / 2, true, false, "(0, pi/2]"};
-  return range;
-}
-
 Option
 ratioBoundOption(double default_value, const std::string& help)
 {
-  return {"-rho", ValueKind::real, "R", help, default_value, "", ratioBoundRange()};
+  return {"-rho", ValueKind::real, "R", help, default_value, "", kRatioBoundRange};
 }
 
 Option
@@ -441,7 +335,7 @@ coconeAngleOption()
   return {"-theta", ValueKind::real, "T",
           "cocone angle in radians: the cocone of a sample is the part of its Voronoi "
           "cell within T of the plane orthogonal to its pole vector",
-          M_PI / 8, "pi/8 = 0.3927", coconeAngleRange()};
+          M_PI / 8, "pi/8 = 0.3927", kCoconeAngleRange, "(0, pi/2)"};
 }
 
 Option
@@ -450,14 +344,14 @@ normalAngleOption()
   return {"-alpha", ValueKind::real, "A",
           "largest angle in radians between the pole lines of neighbouring flat "
           "samples; smaller values flag more samples near curved or sharp regions",
-          M_PI / 6, "pi/6 = 0.5236", normalAngleRange()};
+          M_PI / 6, "pi/6 = 0.5236", kNormalAngleRange, "(0, pi/2]"};
 }
 
 Option
 threadsOption()
 {
   return {"-threads", ValueKind::integer, "N", "number of threads", 0,
-          "0 = every core", Range{0, 4096, false, false, "[0, 4096]"}};
+          "0 = every core", ParameterRange{0, 4096, false, false}};
 }
 
 Option
@@ -521,7 +415,7 @@ CommandLine::parse(int argc, char** argv)
     if (it->kind == ValueKind::flag)
       continue;
     if (i + 1 >= argc || find(argv[i + 1]) != options_.end())
-      fail(arg + " needs a value: " + it->argument + " in " + it->range.text);
+      fail(arg + " needs a value: " + it->argument + " in " + rangeText(*it));
     values_[k] = parseValue(*it, argv[++i]);
   }
 
@@ -552,8 +446,9 @@ CommandLine::parse(int argc, char** argv)
     fail("cannot write " + output_ + ": it is a folder");
 
   if (verbose()) {
-    verbose_stages = true;
-    // The classes report their statistics with PCL_DEBUG.
+    verbose_run = true;
+    // The classes and the core report their statistics and stage timings with
+    // PCL_DEBUG.
     pcl::console::setVerbosityLevel(pcl::console::L_DEBUG);
   }
 }
@@ -618,7 +513,7 @@ CommandLine::printHelp() const
   for (const Option& o : options_) {
     std::string text = o.help + " (default " + unbreakable(defaultText(o));
     if (o.kind != ValueKind::flag)
-      text += "; valid " + unbreakable(o.range.text);
+      text += "; valid " + unbreakable(rangeText(o));
     item(o.name + (o.argument.empty() ? "" : " " + o.argument), text + ")");
   }
   item("-h, --help", "print this help and exit");
@@ -632,9 +527,9 @@ Stage::Stage(const std::string& action, const std::string& object)
 {
   print_highlight("%s ", action.c_str());
   print_value("%s", object.c_str());
-  print_info(verbose_stages ? " ...\n" : " ");
+  print_info(verbose_run ? " ...\n" : " ");
   std::fflush(stdout);
-  stage_open = !verbose_stages;
+  stage_open = !verbose_run;
   timer_.tic();
 }
 
@@ -650,17 +545,17 @@ Stage::done(std::size_t count, const std::string& unit)
 }
 
 std::size_t
-computeStage(const std::string& what,
-             const std::string& unit,
-             const std::function<std::optional<std::size_t>()>& work)
+computeStage(const std::string& what, const std::string& unit, const StageWork& work)
 {
   Stage stage("Computing", what);
-  std::optional<std::size_t> count;
-  const std::string captured = captureStderr([&] { count = work(); });
+  std::string reason;
+  const std::optional<std::size_t> count = [&] {
+    const QuietPcl quiet;
+    return work(reason);
+  }();
   if (!count)
-    fail("computing " + what + " failed: " + reasonFrom(captured, "empty result"));
+    fail("computing " + what + " failed: " + (reason.empty() ? "empty result" : reason));
   stage.done(*count, unit);
-  replayStderr(captured);
   return *count;
 }
 
@@ -697,13 +592,13 @@ loadCloud(const std::string& path, bool verbose)
   Stage stage("Loading", path);
   pcl::PCLPointCloud2 cloud;
   std::string error;
-  bool loaded = false;
-  const std::string captured =
-      captureStderr([&] { loaded = loadPointSamples(path, cloud, &error); });
+  const bool loaded = [&] {
+    const QuietPcl quiet;
+    return loadPointSamples(path, cloud, &error);
+  }();
   if (!loaded)
-    fail(error.empty() ? reasonFrom(captured, "cannot read " + path) : error);
+    fail(error.empty() ? "cannot read " + path : error);
   stage.done(pointCount(cloud), "points");
-  replayStderr(captured);
   if (verbose)
     printDetail("Available dimensions", fieldList(cloud));
   return cloud;

@@ -6,11 +6,17 @@
  * PCL's own tools (pcl::console printing, "[done, X ms : N points]") but checks what
  * those leave unchecked: unknown options, bad or out-of-range values, failed writes
  * and failed computations all end the program with one line on stderr and exit code 1.
+ * The reason of a failed computation or load is the library's own (the classes'
+ * getErrorMessage(), the reader's error argument); PCL's console is quiet around those
+ * calls unless -v is given (QuietPcl). The valid ranges of the classes' parameters are
+ * the library's (pcl/cocone/parameters.h), so that tools and classes agree.
  */
 #pragma once
 
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/cocone/mesh_topology.h>
+#include <pcl/cocone/parameters.h>
+#include <pcl/console/print.h>
 #include <pcl/console/time.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
@@ -32,50 +38,35 @@ namespace tools {
 /** \brief Prints "<program>: <message>" as one line on stderr and exits with code 1.
  * An open stage line on stdout is closed first ("[failed]"), so that the two streams
  * do not share a line on a terminal. Control characters in \a message are replaced so
- * that the promise of one line holds for any file name or argument. */
+ * that the promise of one line holds for any file name or argument. The message shows
+ * even when called within a QuietPcl scope. */
 [[noreturn]] void
 fail(const std::string& message);
 
-/** \brief Runs \a work with stderr redirected into a temporary file and returns what
- * was written there, colour codes removed. The classes report failures with PCL_ERROR
- * and PCL's writers print before throwing; capturing lets a tool turn that into its
- * own single line instead of printing two. */
-std::string
-captureStderr(const std::function<void()>& work);
+/** \brief Silences PCL's console while it lives, unless -v was given (to
+ * CommandLine::parse): the level is set to L_ALWAYS, so that the PCL_ERROR and PCL_WARN
+ * of the classes and of PCL's readers add no line to the tool's one-line error, and the
+ * previous level is restored at the end of the scope. The reasons come from the
+ * classes' getErrorMessage() and the reader's error argument instead. With -v nothing
+ * changes: PCL's messages are shown, the PCL_DEBUG statistics and stage timings of the
+ * classes and the core included (a failure then also shows the class's PCL_ERROR line
+ * before the tool's). Keep the scope to the library call: the tool's own printing goes
+ * through the same console. */
+class QuietPcl
+{
+public:
+  QuietPcl();
+  ~QuietPcl();
+  QuietPcl(const QuietPcl&) = delete;
+  QuietPcl&
+  operator=(const QuietPcl&) = delete;
 
-/** \brief Writes text captured by captureStderr to stderr unchanged (warnings of a run
- * that succeeded must still be seen). */
-void
-replayStderr(const std::string& captured);
-
-/** \brief The last line of captured PCL output as a reason: the "[pcl::Class::method]"
- * prefix and a final period removed; \a fallback when nothing was captured. */
-std::string
-reasonFrom(const std::string& captured, const std::string& fallback);
+private:
+  pcl::console::VERBOSITY_LEVEL previous_;
+};
 
 // ---------------------------------------------------------------------------------
 // Command line
-
-/** \brief The valid values of a numeric option, as the classes document them. */
-struct Range
-{
-  double low = 0;
-  double high = 0;
-  bool low_open = false;
-  bool high_open = false;
-  std::string text; ///< as shown to the user, e.g. "(0, pi/2)"
-
-  bool
-  contains(double value) const;
-};
-
-/** \brief The ranges the classes share (see their setters). */
-const Range&
-ratioBoundRange(); // rho: (0, 10]
-const Range&
-coconeAngleRange(); // theta: (0, pi/2)
-const Range&
-normalAngleRange(); // alpha: (0, pi/2]
 
 enum class ValueKind
 {
@@ -93,14 +84,18 @@ struct Option
   std::string help;     ///< what it does
   double default_value = 0;
   std::string default_text; ///< the default as shown, e.g. "pi/8"; derived if empty
-  Range range;
+  /// the valid values, checked with ParameterRange::contains; for a parameter of the
+  /// classes the library's constant, e.g. pcl::cocone::kRatioBoundRange
+  ParameterRange range{};
+  std::string range_text{}; ///< the range as shown, e.g. "(0, pi/2)"; derived if empty
 };
 
 /** \brief A switch without value. */
 Option
 flagOption(const std::string& name, const std::string& help);
 
-/** \name Options that mean the same in every tool (same names, ranges and help). */
+/** \name Options that mean the same in every tool (same names, ranges and help); the
+ * ranges are the library's kRatioBoundRange, kCoconeAngleRange, kNormalAngleRange. */
 /** \{ */
 Option
 ratioBoundOption(double default_value, const std::string& help);
@@ -135,7 +130,8 @@ public:
    * on a missing or extra argument, an unknown or repeated option, an option without
    * value, a value that is not a number (an integer where one is needed) or is out of
    * range, and an output path with an unsupported extension or in a missing folder.
-   * With -v, raises PCL's console verbosity to L_DEBUG. */
+   * With -v, raises PCL's console verbosity to L_DEBUG for the whole run (QuietPcl
+   * then silences nothing). */
   void
   parse(int argc, char** argv);
 
@@ -208,16 +204,17 @@ private:
   pcl::console::TicToc timer_;
 };
 
-/** \brief Runs \a work as the timed stage "Computing <what>" with stderr captured.
- * \a work returns the count for the closing "[done, X ms : <count> <unit>]", or
- * nothing when the algorithm failed (an empty result for a non-empty input): the tool
- * then fails with "computing <what> failed: <reason>", the reason being the last line
- * the class printed with PCL_ERROR. Warnings of a successful run are shown after the
- * stage line. */
+/** \brief The work of a computeStage: returns the count for the closing "[done, X ms :
+ * <count> <unit>]", or nothing when the algorithm failed (an empty result for a
+ * non-empty input), then with the reason in its argument (the class's
+ * getErrorMessage()). */
+using StageWork = std::function<std::optional<std::size_t>(std::string& reason)>;
+
+/** \brief Runs \a work as the timed stage "Computing <what>", PCL's console quiet
+ * (QuietPcl). If it fails, the tool fails with "computing <what> failed: <reason>"
+ * ("empty result" when \a work gave no reason). */
 std::size_t
-computeStage(const std::string& what,
-             const std::string& unit,
-             const std::function<std::optional<std::size_t>()>& work);
+computeStage(const std::string& what, const std::string& unit, const StageWork& work);
 
 /** \brief Prints "<label>: <value>\n" in PCL's colours (label as info, value as value);
  * for the -v details. */
@@ -235,8 +232,9 @@ formatPercent(std::size_t part, std::size_t whole);
 // ---------------------------------------------------------------------------------
 // Loading and saving
 
-/** \brief Loads \a path with pcl::cocone::loadPointSamples as a timed stage; fails with
- * the reader's reason. With -v also prints the fields. */
+/** \brief Loads \a path with pcl::cocone::loadPointSamples as a timed stage, PCL's
+ * console quiet (QuietPcl); fails with the reader's reason. With -v also prints the
+ * fields. */
 pcl::PCLPointCloud2
 loadCloud(const std::string& path, bool verbose);
 

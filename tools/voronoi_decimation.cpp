@@ -3,6 +3,11 @@
 // pcl_voronoi_decimation: removes oversampling while keeping features (algorithm
 // DECIMATE of Dey et al. 2001). The kept rows are copied from the input with all their
 // fields, never moved or resampled, in input order.
+//
+// With -v the library's PCL_DEBUG lines (the diagram's stage timings, then the removal
+// summary) show as the decimation runs. Finer progress would need the core's callback
+// (pcl::cocone::VoronoiCocone::decimate), which pcl::VoronoiDecimation does not pass
+// on.
 #include "tool_common.h"
 
 #include <pcl/cocone/voronoi_decimation.h>
@@ -46,13 +51,17 @@ decimate(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLine&
                                   formatNumber(decimation.getCoconeAngle()) + " rad");
 
   pcl::Indices kept;
-  computeStage("the decimation", "points kept", [&]() -> std::optional<std::size_t> {
-    decimation.filter(kept);
-    // A valid cloud always keeps points; nothing kept means the diagram failed.
-    if (kept.empty())
-      return std::nullopt;
-    return kept.size();
-  });
+  computeStage("the decimation", "points kept",
+               [&](std::string& reason) -> std::optional<std::size_t> {
+                 decimation.filter(kept);
+                 // A valid cloud always keeps points; nothing kept means the diagram
+                 // failed.
+                 if (kept.empty()) {
+                   reason = decimation.getErrorMessage();
+                   return std::nullopt;
+                 }
+                 return kept.size();
+               });
   return kept;
 }
 

@@ -22,6 +22,7 @@
 #include <vtkCellArray.h>
 #include <vtkImageData.h>
 #include <vtkLightKit.h>
+#include <vtkLogger.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkOutputWindow.h>
@@ -60,6 +61,7 @@
 #include <X11/Xlib.h>
 
 using namespace pcl::cocone::tools;
+using pcl::cocone::ParameterRange;
 
 namespace {
 
@@ -113,9 +115,9 @@ commandLine()
         0, "none", {}},
        flagOption("-wireframe", "draw the mesh's edges over its shaded surface"),
        {"-width", ValueKind::integer, "W", "image width in pixels", 640, "",
-        Range{16, 8192, false, false, "[16, 8192]"}},
+        ParameterRange{16, 8192, false, false}},
        {"-height", ValueKind::integer, "H", "image height in pixels", 480, "",
-        Range{16, 8192, false, false, "[16, 8192]"}},
+        ParameterRange{16, 8192, false, false}},
        {"-camera", ValueKind::flag, "px,py,pz,fx,fy,fz,ux,uy,uz",
         "camera position, focal point and view-up vector: nine comma-separated numbers "
         "(every run prints its camera, to be reused or adjusted); -azimuth and "
@@ -126,14 +128,14 @@ commandLine()
        {"-azimuth", ValueKind::real, "DEG",
         "turn the camera by DEG degrees about the view-up axis through the focal point "
         "(positive: towards +x from the default view)",
-        0, "", Range{-360, 360, false, false, "[-360, 360]"}},
+        0, "", ParameterRange{-360, 360, false, false}},
        {"-elevation", ValueKind::real, "DEG",
         "then raise the camera by DEG degrees (positive: seen from above)", 0, "",
-        Range{-90, 90, true, true, "(-90, 90)"}},
+        ParameterRange{-90, 90, true, true}},
        {"-point_size", ValueKind::real, "S",
         "diameter in pixels of the points of a cloud, drawn as shaded spheres; boundary "
         "markers are 1.6 times larger",
-        4, "", Range{0, 64, true, false, "(0, 64]"}},
+        4, "", ParameterRange{0, 64, true, false}},
        verboseOption()});
 }
 
@@ -389,12 +391,14 @@ loadVtk(const std::string& path, const MessageLog& log, Scene& scene,
   if (!fs::is_regular_file(path, ec))
     fail("cannot read " + path + ": not a regular file");
   pcl::PolygonMesh mesh;
-  const std::string captured =
-      captureStderr([&] { pcl::io::loadPolygonFileVTK(path, mesh); });
+  {
+    const QuietPcl quiet;
+    pcl::io::loadPolygonFileVTK(path, mesh);
+  }
   failOnVtkError(log, "cannot read " + path);
   cloud = mesh.cloud;
   if (pointCount(cloud) == 0)
-    fail("cannot read " + path + ": " + reasonFrom(captured, "no point"));
+    fail("cannot read " + path + ": no point");
   scene.vertices = pointsOf(cloud);
   for (const pcl::Vertices& polygon : mesh.polygons)
     scene.faces.emplace_back(polygon.vertices.begin(), polygon.vertices.end());
@@ -715,9 +719,11 @@ main(int argc, char** argv)
   // Before loading anything: without a display there is nothing to do.
   Display* display = openDisplay();
 
-  // VTK's messages are collected and reported as one line (see MessageLog).
+  // VTK's messages are collected and reported as one line (see MessageLog); VTK 9
+  // also logs its errors to stderr through vtkLogger, which would add a second line.
   vtkNew<MessageLog> log;
   vtkOutputWindow::SetInstance(log);
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
 
   Scene scene = loadScene(cmd, *log);
   if (boundary_path) {
