@@ -376,7 +376,8 @@ protected:
     command += " > " + shellQuote(out.string()) + " 2> " + shellQuote(err.string());
     ToolRun result;
     // xvfb-run -a can lose the race for a display number to another test starting
-    // Xvfb at the same moment; it then fails before the tool runs: try again.
+    // Xvfb at the same moment, or fail to clean up its temporary folder on a busy
+    // machine; both are xvfb-run's own errors, not the tool's: try again.
     for (int attempt = 0; attempt < 3; ++attempt) {
       const int status = std::system(command.c_str());
       result = ToolRun();
@@ -384,7 +385,8 @@ protected:
         result.exit_code = WEXITSTATUS(status);
       result.out = readText(out);
       result.err = readText(err);
-      if (!display || result.err.find("Xvfb failed to start") == std::string::npos)
+      if (!display || (result.err.find("Xvfb failed to start") == std::string::npos &&
+                       result.err.find("xvfb-run: error") == std::string::npos))
         break;
     }
     return result;
