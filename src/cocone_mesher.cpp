@@ -5,6 +5,9 @@
 #include <pcl/console/print.h>
 
 #include <Eigen/Geometry>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
@@ -172,8 +175,9 @@ private:
               const std::vector<std::uint32_t>& added);
   void undo(const std::vector<std::uint32_t>& added);
   bool intersectsSurface(const std::vector<std::uint32_t>& added);
-  template <typename F> void forEachCell(const TriangleIndices& t, F&& f) const;
+  template <typename F> void forEachCell(const Vector& low, const Vector& high, F&& f) const;
   void gridInsert(std::uint32_t t);
+  void meshNear(const Vector& low, const Vector& high, std::vector<std::uint32_t>& nearby);
   void meshNear(const TriangleIndices& t, std::vector<std::uint32_t>& nearby);
   bool crossesMesh(const TriangleIndices& t, std::uint32_t self,
                    std::vector<std::uint32_t>* blockers);
@@ -204,8 +208,6 @@ private:
   std::vector<std::vector<SampleIndex> > traceLoops() const;
   void insertUnusedSamples();
   std::size_t removeCrossings();
-  void meshAtNeighbours(const TriangleIndices& t,
-                        std::vector<std::uint32_t>& nearby) const;
   void orientClosedComponentsOutward();
 
   const VoronoiCocone& voronoi_;
@@ -910,7 +912,7 @@ Mesher::stitch(std::vector<std::vector<SampleIndex> >& loops)
     added.clear();
     walk(frontier, group, added);
     const bool walk_closes = !added.empty() && closes(loop, added);
-    PCL_DEBUG("[pcl::cocone::reconstructSurface] hole of %zu edges: Delaunay fill %s, "
+    PCL_VERBOSE("[pcl::cocone::reconstructSurface] hole of %zu edges: Delaunay fill %s, "
               "size %.2f local spacings\n",
               loop.size(), walk_closes ? "closes it" : "does not close it",
               2 * area(added) / perimeter / spacing);
@@ -974,7 +976,7 @@ Mesher::fillPolygon(std::vector<SampleIndex>& loop, double spacing)
       perimeter += (points_[loop[k]] - points_[loop[(k + 1) % loop.size()]]).norm();
     for (const TriangleIndices& t : fill)
       fill_area += 0.5 * orientedNormal(t).norm();
-    PCL_DEBUG(
+    PCL_VERBOSE(
         "[pcl::cocone::reconstructSurface] hole of %zu edges: polygon fill of size "
         "%.2f local spacings\n",
         loop.size(), 2 * fill_area / perimeter / spacing);
@@ -1082,10 +1084,8 @@ Mesher::closes(const std::vector<SampleIndex>& loop,
 // from folding through the surface at sharp or thin parts.
 template <typename F>
 void
-Mesher::forEachCell(const TriangleIndices& t, F&& f) const
+Mesher::forEachCell(const Vector& low, const Vector& high, F&& f) const
 {
-  const Vector low = points_[t[0]].cwiseMin(points_[t[1]]).cwiseMin(points_[t[2]]);
-  const Vector high = points_[t[0]].cwiseMax(points_[t[1]]).cwiseMax(points_[t[2]]);
   const auto index = [&](double x) {
     return static_cast<long>(std::floor(x / grid_cell_));
   };
@@ -1100,12 +1100,23 @@ Mesher::forEachCell(const TriangleIndices& t, F&& f) const
 void
 Mesher::gridInsert(std::uint32_t t)
 {
-  forEachCell(oriented_[t], [&](CellKey key) { grid_[key].push_back(t); });
+  const TriangleIndices& o = oriented_[t];
+  forEachCell(points_[o[0]].cwiseMin(points_[o[1]]).cwiseMin(points_[o[2]]),
+              points_[o[0]].cwiseMax(points_[o[1]]).cwiseMax(points_[o[2]]),
+              [&](CellKey key) { grid_[key].push_back(t); });
 }
 
 // Mesh triangles whose grid cells meet those of t.
 void
 Mesher::meshNear(const TriangleIndices& t, std::vector<std::uint32_t>& nearby)
+{
+  meshNear(points_[t[0]].cwiseMin(points_[t[1]]).cwiseMin(points_[t[2]]),
+           points_[t[0]].cwiseMax(points_[t[1]]).cwiseMax(points_[t[2]]), nearby);
+}
+
+// Mesh triangles whose grid cells meet those of the box [low, high].
+void
+Mesher::meshNear(const Vector& low, const Vector& high, std::vector<std::uint32_t>& nearby)
 {
   if (grid_cell_ == 0) {
     double edges = 0;
@@ -1121,7 +1132,7 @@ Mesher::meshNear(const TriangleIndices& t, std::vector<std::uint32_t>& nearby)
         gridInsert(u);
   }
   nearby.clear();
-  forEachCell(t, [&](CellKey key) {
+  forEachCell(low, high, [&](CellKey key) {
     const auto found = grid_.find(key);
     if (found != grid_.end())
       for (const std::uint32_t u : found->second)
@@ -1187,8 +1198,35 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
     meshOnEdge(loop[i], loop[k], on_edge);
     return on_edge.empty();
   };
+  // Every fill triangle lies in the loop's bounding box: gather the mesh there once,
+  // rather than for each of the O(m^3) candidates, and sift it by bounding boxes.
+  Vector low = points_[loop[0]], high = low;
+  for (const SampleIndex v : loop) {
+    low = low.cwiseMin(points_[v]);
+    high = high.cwiseMax(points_[v]);
+  }
+  meshNear(low, high, near_);
+  std::vector<std::pair<Vector, Vector> > boxes;
+  boxes.reserve(near_.size());
+  for (const std::uint32_t u : near_) {
+    const TriangleIndices& o = oriented_[u];
+    boxes.emplace_back(points_[o[0]].cwiseMin(points_[o[1]]).cwiseMin(points_[o[2]]),
+                       points_[o[0]].cwiseMax(points_[o[1]]).cwiseMax(points_[o[2]]));
+  }
   const auto crosses = [&](const TriangleIndices& t) {
-    return crossesMesh(t, kNoTriangle, &blockers);
+    const Vector t_low = points_[t[0]].cwiseMin(points_[t[1]]).cwiseMin(points_[t[2]]);
+    const Vector t_high = points_[t[0]].cwiseMax(points_[t[1]]).cwiseMax(points_[t[2]]);
+    bool crossing = false;
+    for (std::size_t k = 0; k < near_.size(); ++k) {
+      if ((boxes[k].second.array() < t_low.array()).any() ||
+          (t_high.array() < boxes[k].first.array()).any())
+        continue; // separated boxes (touching ones go on to the exact test)
+      if (trianglesIntersect(points_, t, oriented_[near_[k]])) {
+        crossing = true;
+        blockers.push_back(near_[k]);
+      }
+    }
+    return crossing;
   };
   const double infinity = std::numeric_limits<double>::infinity();
   std::vector<double> cost(m * m, infinity);
@@ -1393,21 +1431,79 @@ std::size_t
 Mesher::removeCrossings()
 {
   const std::vector<std::uint8_t>& boundary = report_.boundary_samples;
-  std::vector<std::uint32_t> suspects, nearby;
+  std::vector<std::uint32_t> suspects;
   for (std::uint32_t t = 0; t < pool_.size(); ++t) {
     const TriangleIndices& o = oriented_[t];
     if (state_[t] == kInMesh && (group_[t] != kCoconeGroup || boundary[o[0]] ||
                                  boundary[o[1]] || boundary[o[2]]))
       suspects.push_back(t);
   }
+
+  // The Delaunay neighbours of every corner, looked up once each (the lookup walks the
+  // triangulation, which allows no concurrent walks).
+  std::vector<SampleIndex> corners;
+  for (const std::uint32_t t : suspects)
+    corners.insert(corners.end(), oriented_[t].begin(), oriented_[t].end());
+  std::sort(corners.begin(), corners.end());
+  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+  std::vector<std::uint32_t> offsets(corners.size() + 1, 0);
+  std::vector<SampleIndex> adjacency, neighbours;
+  for (std::size_t k = 0; k < corners.size(); ++k) {
+    voronoi_.delaunayNeighbours(corners[k], neighbours);
+    adjacency.insert(adjacency.end(), neighbours.begin(), neighbours.end());
+    offsets[k + 1] = static_cast<std::uint32_t>(adjacency.size());
+  }
+
+  // Every crossing pair (suspect, mesh triangle), found in parallel without changing
+  // anything; the mesh triangles that can reach t are those at its corners and at
+  // their Delaunay neighbours (a triangle crossing a small one has a corner next to it).
+  std::vector<std::vector<std::uint32_t> > crossing(suspects.size());
+  const auto findCrossings = [&](const tbb::blocked_range<std::size_t>& range) {
+    std::vector<SampleIndex> samples;
+    std::vector<std::uint32_t> nearby;
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      const TriangleIndices& t = oriented_[suspects[i]];
+      samples.assign(t.begin(), t.end());
+      for (const SampleIndex v : t) {
+        const std::size_t k = static_cast<std::size_t>(
+            std::lower_bound(corners.begin(), corners.end(), v) - corners.begin());
+        samples.insert(samples.end(), adjacency.begin() + offsets[k],
+                       adjacency.begin() + offsets[k + 1]);
+      }
+      std::sort(samples.begin(), samples.end());
+      samples.erase(std::unique(samples.begin(), samples.end()), samples.end());
+      nearby.clear();
+      for (const SampleIndex v : samples)
+        forEachAround(v, [&](std::uint32_t u) {
+          if (state_[u] == kInMesh && u != suspects[i])
+            nearby.push_back(u);
+        });
+      std::sort(nearby.begin(), nearby.end());
+      nearby.erase(std::unique(nearby.begin(), nearby.end()), nearby.end());
+      for (const std::uint32_t u : nearby)
+        if (trianglesIntersect(points_, t, oriented_[u]))
+          crossing[i].push_back(u);
+    }
+  };
+  const tbb::blocked_range<std::size_t> all(0, suspects.size(), 64);
+  const unsigned threads = voronoi_.getNumberOfThreads();
+  if (threads == 0)
+    tbb::parallel_for(all, findCrossings);
+  else
+    tbb::task_arena(static_cast<int>(threads)).execute([&] {
+      tbb::parallel_for(all, findCrossings);
+    });
+
+  // Of each crossing pair the triangle added last goes, suspects in order: removals
+  // only shrink the mesh, so the pairs still both in it here are exactly those a
+  // sequential pass testing as it goes would meet.
   std::vector<std::uint32_t> gone;
-  for (const std::uint32_t t : suspects) {
+  for (std::size_t i = 0; i < suspects.size(); ++i) {
+    const std::uint32_t t = suspects[i];
     if (state_[t] != kInMesh)
       continue;
-    meshAtNeighbours(oriented_[t], nearby);
-    for (const std::uint32_t u : nearby) {
-      if (u == t || state_[u] != kInMesh ||
-          !trianglesIntersect(points_, oriented_[t], oriented_[u]))
+    for (const std::uint32_t u : crossing[i]) {
+      if (state_[u] != kInMesh)
         continue;
       const std::uint32_t drop = std::max(t, u);
       leaveMesh(drop);
@@ -1422,28 +1518,6 @@ Mesher::removeCrossings()
   resolvePinches();
   report_.crossing_triangles = gone.size();
   return gone.size();
-}
-
-// The mesh triangles at the corners of t and at their Delaunay neighbours.
-void
-Mesher::meshAtNeighbours(const TriangleIndices& t,
-                         std::vector<std::uint32_t>& nearby) const
-{
-  std::vector<SampleIndex> samples(t.begin(), t.end()), neighbours;
-  for (const SampleIndex v : t) {
-    voronoi_.delaunayNeighbours(v, neighbours);
-    samples.insert(samples.end(), neighbours.begin(), neighbours.end());
-  }
-  std::sort(samples.begin(), samples.end());
-  samples.erase(std::unique(samples.begin(), samples.end()), samples.end());
-  nearby.clear();
-  for (const SampleIndex v : samples)
-    forEachAround(v, [&](std::uint32_t u) {
-      if (state_[u] == kInMesh)
-        nearby.push_back(u);
-    });
-  std::sort(nearby.begin(), nearby.end());
-  nearby.erase(std::unique(nearby.begin(), nearby.end()), nearby.end());
 }
 
 // Closed components face outward: flip any whose signed volume is negative.
