@@ -34,8 +34,6 @@ namespace bench {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 /** A field of /proc/self/status in kB ("VmHWM", "VmRSS"); NaN when absent. */
 double
 statusKb(const std::string& field)

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -18,6 +19,9 @@
 namespace pcl {
 namespace cocone {
 namespace bench {
+
+/** "Not measured" in every table. */
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // ---------------------------------------------------------------------------------
 // Measurements

@@ -26,8 +26,6 @@ using Triangle = Kernel::Triangle_3;
 using Primitive = CGAL::AABB_triangle_primitive<Kernel, std::vector<Triangle>::const_iterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 } // namespace
 
 struct TriangleDistance::Impl

@@ -23,8 +23,6 @@ namespace bench {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 /** F1 of a precision and a recall (0 when both are 0). */
 double
 harmonicMean(double precision, double recall)

@@ -33,7 +33,6 @@ namespace {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point3 = Kernel::Point_3;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /** Equal counts: the peers are tuned to within this share of ours. */
 constexpr double kCountTolerance = 0.02;
 

@@ -38,8 +38,6 @@ using VertexBase = CGAL::Triangulation_vertex_base_with_info_3<std::uint32_t, Ke
 using Tds = CGAL::Triangulation_data_structure_3<VertexBase>;
 using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, Tds>;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 /** Peers are left out on inputs of this many points and more with --quick. */
 constexpr std::size_t kQuickPeerLimit = 100000;
 
