@@ -122,6 +122,17 @@ Context::largeTorus()
 
 namespace {
 
+/** \a text with every occurrence of the source folder written relative to it, so that
+ * the committed report names no machine's paths. */
+std::string
+relativeToSource(std::string text)
+{
+  const std::string source = std::string(PCL_COCONE_BENCH_SOURCE_DIR) + "/";
+  for (std::size_t at = text.find(source); at != std::string::npos; at = text.find(source, at))
+    text.erase(at, source.size());
+  return text;
+}
+
 using namespace pcl::cocone::bench;
 
 void
@@ -298,8 +309,8 @@ main(int argc, char** argv)
   text << "## Commands\n\n```\n";
   if (const char* invocation = std::getenv("PCL_COCONE_BENCH_INVOCATION"))
     text << invocation << "\n";
-  text << joinArguments(argc, argv) << "\n```\n\n";
-  text << "Data folder: `" << options.data_directory << "`.\n\n";
+  text << relativeToSource(joinArguments(argc, argv)) << "\n```\n\n";
+  text << "Data folder: `" << relativeToSource(options.data_directory) << "`.\n\n";
   if (!context.skipped.empty()) {
     text << "Skipped (missing or unreadable):\n\n";
     for (const std::string& s : context.skipped)
