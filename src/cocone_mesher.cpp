@@ -1574,10 +1574,26 @@ Mesher::run(std::vector<TriangleIndices>& output)
   };
   report_ = ReconstructionReport();
   ReconstructionReport::Timings& timings = report_.timings;
-  if (parameters_.detect_boundary)
+  if (parameters_.detect_boundary) {
     detectBoundarySamples(voronoi_, parameters_.boundary, report_.boundary_samples);
-  else
+    // Boundary samples cast no vote: when they are the majority, too few triangles are
+    // chosen to cover the surface (Power Crust's 1281-point knot: 98% flagged, 11% of
+    // the samples used). Say so, with the way out, rather than return a scrap silently.
+    std::size_t flagged = 0;
+    for (SampleIndex v = 0; v < n_; ++v)
+      flagged += report_.boundary_samples[v] && voronoi_.representative(v) == v;
+    const std::size_t distinct = voronoi_.numUniqueSamples();
+    if (distinct > 0 && 2 * flagged > distinct)
+      PCL_WARN("[pcl::cocone::reconstructSurface] %zu of %zu distinct samples (%.0f%%) are "
+               "boundary samples: the cloud is too sparse for boundary detection at rho "
+               "%g, and most of the surface will stay uncovered; a larger rho or no "
+               "boundary detection fits it better.\n",
+               flagged, distinct, 100.0 * static_cast<double>(flagged) / distinct,
+               parameters_.boundary.ratio_bound);
+  }
+  else {
     report_.boundary_samples.assign(n_, 0);
+  }
   mesh_degree_.assign(n_, 0);
   lap(timings.boundary, "boundary samples");
 

@@ -82,11 +82,18 @@ reconstruct(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLi
                  return polygons.size();
                });
 
+  std::size_t boundary_samples = 0;
+  for (const std::uint8_t flag : cocone.getBoundarySamples())
+    boundary_samples += flag;
+  // The library's warning is silenced without -v (QuietPcl): repeat it as a note.
+  if (2 * boundary_samples > cocone.getBoundarySamples().size())
+    pcl::console::print_info("note: %zu of %zu points are boundary samples: the cloud is "
+                             "too sparse for boundary detection at rho %g; try a larger "
+                             "-rho or -no_boundary\n",
+                             boundary_samples, cocone.getBoundarySamples().size(),
+                             cocone.getRatioBound());
   if (cmd.verbose()) {
     const pcl::cocone::ReconstructionReport& report = cocone.getReport();
-    std::size_t boundary_samples = 0;
-    for (const std::uint8_t flag : cocone.getBoundarySamples())
-      boundary_samples += flag;
     printDetail("Boundary samples", std::to_string(boundary_samples));
     printDetail("Candidate triangles",
                 std::to_string(cocone.getNumberOfCandidateTriangles()));
