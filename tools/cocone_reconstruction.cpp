@@ -11,8 +11,10 @@
 #include <pcl/common/point_tests.h>
 #include <pcl/console/print.h>
 
+#include <algorithm>
 #include <array>
 #include <limits>
+#include <string>
 #include <vector>
 
 using namespace pcl::cocone::tools;
@@ -47,6 +49,22 @@ commandLine()
        verboseOption()});
 }
 
+/** When most points are boundary samples (they cast no vote, so the cocones choose too
+ * few triangles to cover the surface), sets \a note to say so and returns true. */
+bool
+sparseNote(const pcl::CoconeReconstruction<pcl::PointXYZ>& cocone, std::string& note)
+{
+  const std::vector<std::uint8_t>& flags = cocone.getBoundarySamples();
+  const auto flagged = static_cast<std::size_t>(std::count(flags.begin(), flags.end(), 1));
+  if (2 * flagged <= flags.size())
+    return false;
+  note = std::to_string(flagged) + " of " + std::to_string(flags.size()) +
+         " points are boundary samples: the cloud is too sparse for boundary detection "
+         "at rho " + formatNumber(cocone.getRatioBound()) +
+         "; try a larger -rho or -no_boundary";
+  return true;
+}
+
 std::vector<pcl::Vertices>
 reconstruct(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLine& cmd)
 {
@@ -73,27 +91,26 @@ reconstruct(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLi
   computeStage("the COCONE surface", "triangles",
                [&](std::string& reason) -> std::optional<std::size_t> {
                  cocone.reconstruct(polygons);
-                 // Coplanar input and the like give no polygon; so would a cloud
-                 // without surface (no reason then: "empty result").
+                 // Coplanar input and the like give no polygon; so does a cloud too
+                 // sparse for the cocones to choose any triangle.
                  if (polygons.empty()) {
                    reason = cocone.getErrorMessage();
+                   if (reason.empty() && sparseNote(cocone, reason))
+                     reason = "no triangle: " + reason;
                    return std::nullopt;
                  }
                  return polygons.size();
                });
 
-  std::size_t boundary_samples = 0;
-  for (const std::uint8_t flag : cocone.getBoundarySamples())
-    boundary_samples += flag;
   // The library's warning is silenced without -v (QuietPcl): repeat it as a note.
-  if (2 * boundary_samples > cocone.getBoundarySamples().size())
-    pcl::console::print_info("note: %zu of %zu points are boundary samples: the cloud is "
-                             "too sparse for boundary detection at rho %g; try a larger "
-                             "-rho or -no_boundary\n",
-                             boundary_samples, cocone.getBoundarySamples().size(),
-                             cocone.getRatioBound());
+  std::string note;
+  if (sparseNote(cocone, note))
+    pcl::console::print_info("note: %s\n", note.c_str());
   if (cmd.verbose()) {
     const pcl::cocone::ReconstructionReport& report = cocone.getReport();
+    std::size_t boundary_samples = 0;
+    for (const std::uint8_t flag : cocone.getBoundarySamples())
+      boundary_samples += flag;
     printDetail("Boundary samples", std::to_string(boundary_samples));
     printDetail("Candidate triangles",
                 std::to_string(cocone.getNumberOfCandidateTriangles()));
