@@ -16,6 +16,7 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
+#include "support/clouds.h"
 #include "support/data_paths.h"
 #include "support/shapes.h"
 
@@ -41,6 +42,8 @@
 namespace {
 
 using pcl::cocone::test::SampledShape;
+using pcl::cocone::test::toCloud;
+using pcl::cocone::test::toPoints;
 namespace shapes = pcl::cocone::test;
 
 constexpr double kPi = 3.14159265358979323846;
@@ -67,24 +70,6 @@ cachedShape(const std::string& name, ShapeGenerator generate, std::size_t n = kS
 
 // ---------------------------------------------------------------------------------
 // Clouds and runs
-
-template <typename PointT>
-typename pcl::PointCloud<PointT>::Ptr
-makeCloud(const std::vector<Eigen::Vector3d>& points)
-{
-  auto cloud = pcl::make_shared<pcl::PointCloud<PointT> >();
-  cloud->resize(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i)
-  {
-    (*cloud)[i].x = static_cast<float>(points[i].x());
-    (*cloud)[i].y = static_cast<float>(points[i].y());
-    (*cloud)[i].z = static_cast<float>(points[i].z());
-  }
-  cloud->width = static_cast<std::uint32_t>(points.size());
-  cloud->height = 1;
-  cloud->is_dense = true;
-  return cloud;
-}
 
 /** What one compute() produced, copied out of the estimator. */
 struct BoundaryRun
@@ -128,7 +113,7 @@ runBoundary(const typename pcl::PointCloud<PointT>::ConstPtr& cloud,
 BoundaryRun
 runBoundary(const std::vector<Eigen::Vector3d>& points, unsigned band_rings = 0)
 {
-  return runBoundary<pcl::PointXYZ>(makeCloud<pcl::PointXYZ>(points), band_rings);
+  return runBoundary<pcl::PointXYZ>(toCloud(points), band_rings);
 }
 
 std::vector<Eigen::Vector3d>
@@ -155,7 +140,7 @@ class NearestPoint
 {
 public:
   explicit NearestPoint(const std::vector<Eigen::Vector3d>& points)
-      : cloud_(makeCloud<pcl::PointXYZ>(points))
+      : cloud_(toCloud(points))
   {
     if (!points.empty())
       tree_.setInputCloud(cloud_);
@@ -512,16 +497,6 @@ loadCloud(const std::string& path)
   return cloud;
 }
 
-std::vector<Eigen::Vector3d>
-toVectors(const pcl::PointCloud<pcl::PointXYZ>& cloud)
-{
-  std::vector<Eigen::Vector3d> points;
-  points.reserve(cloud.size());
-  for (const pcl::PointXYZ& p : cloud)
-    points.push_back(p.getVector3fMap().cast<double>());
-  return points;
-}
-
 /** The Stanford bunny (the paper's BUNNY): its holes are the boundary loops of the
  * reference mesh (in the base). BOUNDARY should find them; it also flags thin,
  * undersampled parts (the ears), which the paper counts as boundary too: its
@@ -531,7 +506,7 @@ TEST(BoundarySampleEstimation, StanfordBunnyHoles)
   PCL_COCONE_REQUIRE_DATA_FILE(path, "bun_zipper_35947.ply");
   const auto cloud = loadCloud(path);
   ASSERT_TRUE(cloud);
-  const std::vector<Eigen::Vector3d> points = toVectors(*cloud);
+  const std::vector<Eigen::Vector3d> points = toPoints(*cloud);
 
   std::vector<pcl::Vertices> faces;
   std::string error;
@@ -697,7 +672,7 @@ TEST(BoundarySampleEstimation, MilkCartonPartialView)
   for (const pcl::PointXYZ& p : *raw)
     if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))
       cloud->push_back(p);
-  const std::vector<Eigen::Vector3d> points = toVectors(*cloud);
+  const std::vector<Eigen::Vector3d> points = toPoints(*cloud);
   ASSERT_GE(points.size(), 1000u);
 
   // Spacing: no reference surface, so a robust estimate from the samples.
@@ -800,10 +775,10 @@ TEST(BoundarySampleEstimation, FewerThanFourPointsIsAnError)
   for (const auto& points : inputs)
   {
     std::string printed;
-    EXPECT_EQ(computeCapturingStderr(makeCloud<pcl::PointXYZ>(points), printed), 0u);
+    EXPECT_EQ(computeCapturingStderr(toCloud(points), printed), 0u);
     EXPECT_NE(printed.find("BoundarySampleEstimation"), std::string::npos) << printed;
   }
-  auto cloud = makeCloud<pcl::PointXYZ>({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
+  auto cloud = toCloud({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
   (*cloud)[3].x = std::numeric_limits<float>::quiet_NaN();
   cloud->is_dense = false;
   std::string printed;
@@ -843,7 +818,7 @@ TEST(BoundarySampleEstimation, CoplanarAndCollinearPointsAreAnError)
     SCOPED_TRACE(input.first);
     std::string printed;
     const std::size_t rows
-        = computeCapturingStderr(makeCloud<pcl::PointXYZ>(input.second), printed);
+        = computeCapturingStderr(toCloud(input.second), printed);
     std::cout << "[ measured ] " << input.first << " (" << input.second.size()
               << " points): output rows=" << rows << ", error reported: "
               << (printed.find("BoundarySampleEstimation") != std::string::npos ? "yes"
@@ -857,7 +832,7 @@ TEST(BoundarySampleEstimation, CoplanarAndCollinearPointsAreAnError)
 TEST(BoundarySampleEstimation, NonFinitePointsAreSkipped)
 {
   const SampledShape& shape = cachedShape("hemisphere", shapes::sampleHemisphere);
-  const auto clean = makeCloud<pcl::PointXYZ>(shape.points);
+  const auto clean = toCloud(shape.points);
   const BoundaryRun reference = runBoundary<pcl::PointXYZ>(clean);
   ASSERT_EQ(reference.rows, clean->size());
 
@@ -924,7 +899,7 @@ TEST(BoundarySampleEstimation, NonFinitePointsAreSkipped)
 TEST(BoundarySampleEstimation, DuplicatesGetTheirRepresentativesFlag)
 {
   const SampledShape& shape = cachedShape("hemisphere", shapes::sampleHemisphere);
-  const auto clean = makeCloud<pcl::PointXYZ>(shape.points);
+  const auto clean = toCloud(shape.points);
   const BoundaryRun reference = runBoundary<pcl::PointXYZ>(clean);
 
   // Copies of every 13th point, and several copies of the flagged ones, appended.
@@ -967,7 +942,7 @@ TEST(BoundarySampleEstimation, DuplicatesGetTheirRepresentativesFlag)
 TEST(BoundarySampleEstimation, IndicesSelectRowsOfTheFullRun)
 {
   const SampledShape& shape = cachedShape("hemisphere", shapes::sampleHemisphere);
-  const auto cloud = makeCloud<pcl::PointXYZ>(shape.points);
+  const auto cloud = toCloud(shape.points);
   const BoundaryRun full = runBoundary<pcl::PointXYZ>(cloud);
 
   // Every third point, in a shuffled order.
@@ -1033,10 +1008,10 @@ TEST(BoundarySampleEstimation, OutOfRangeSettersKeepTheValue)
 TEST(BoundarySampleEstimation, SearchSurfaceIsNotSupported)
 {
   const SampledShape& shape = cachedShape("hemisphere", shapes::sampleHemisphere);
-  const auto cloud = makeCloud<pcl::PointXYZ>(shape.points);
+  const auto cloud = toCloud(shape.points);
   std::vector<Eigen::Vector3d> half(shape.points.begin(),
                                     shape.points.begin() + shape.points.size() / 2);
-  const auto other = makeCloud<pcl::PointXYZ>(half);
+  const auto other = toCloud(half);
 
   pcl::BoundarySampleEstimation<pcl::PointXYZ> estimator;
   estimator.setInputCloud(cloud);
@@ -1082,7 +1057,7 @@ TYPED_TEST_SUITE(BoundarySampleEstimationTyped, PointTypes);
 TYPED_TEST(BoundarySampleEstimationTyped, HemisphereRim)
 {
   const SampledShape& shape = cachedShape("hemisphere", shapes::sampleHemisphere, 4000);
-  const auto cloud = makeCloud<TypeParam>(shape.points);
+  const auto cloud = toCloud<TypeParam>(shape.points);
   const BoundaryRun run = runBoundary<TypeParam>(cloud);
   ASSERT_EQ(run.rows, shape.points.size());
   const RimMetrics m = measureRim(shape, run.flags);

@@ -4,9 +4,9 @@
 #include <pcl/cocone/cocone_reconstruction.h>
 #include <pcl/cocone/mesh_topology.h>
 #include <pcl/cocone/point_io.h>
-#include <pcl/conversions.h>
 #include <pcl/point_types.h>
 
+#include <support/clouds.h>
 #include <support/data_paths.h>
 #include <support/mesh_checks.h>
 #include <support/shapes.h>
@@ -25,25 +25,6 @@ using pcl::cocone::MeshTopology;
 using pcl::cocone::TriangleIndices;
 using namespace pcl::cocone::test;
 using Points = std::vector<Eigen::Vector3d>;
-
-pcl::PointCloud<pcl::PointXYZ>::Ptr
-toCloud(const Points& points)
-{
-  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
-  for (const Eigen::Vector3d& p : points)
-    cloud->push_back(pcl::PointXYZ(static_cast<float>(p.x()), static_cast<float>(p.y()),
-                                   static_cast<float>(p.z())));
-  return cloud;
-}
-
-Points
-toPoints(const pcl::PointCloud<pcl::PointXYZ>& cloud)
-{
-  Points points;
-  for (const pcl::PointXYZ& p : cloud)
-    points.emplace_back(p.x, p.y, p.z);
-  return points;
-}
 
 std::vector<TriangleIndices>
 toTriangles(const std::vector<pcl::Vertices>& polygons)
@@ -318,11 +299,7 @@ DataSet
 loadDataSet(const std::string& path)
 {
   DataSet data;
-  pcl::PCLPointCloud2 blob;
-  std::string error;
-  EXPECT_TRUE(pcl::cocone::loadPointSamples(path, blob, &error)) << error;
-  data.cloud.reset(new pcl::PointCloud<pcl::PointXYZ>);
-  pcl::fromPCLPointCloud2(blob, *data.cloud);
+  data.cloud = loadCloud(path);
   std::vector<pcl::Vertices> faces;
   if (pcl::cocone::loadMeshFaces(path, faces, nullptr))
     data.reference = toTriangles(faces);

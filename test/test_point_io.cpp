@@ -115,6 +115,23 @@ coordinates(const pcl::PCLPointCloud2& cloud)
   return xyz;
 }
 
+/** Runs \a load, a reader of \a path given where to put its reason. Both readers fail
+ * the same way: false, a one-line reason, and nothing on stderr. Returns the reason. */
+template <typename Load>
+std::string
+expectQuietFailure(const std::string& path, Load load)
+{
+  std::string error;
+  ::testing::internal::CaptureStderr();
+  const bool ok = load(&error);
+  const std::string printed = ::testing::internal::GetCapturedStderr();
+  EXPECT_FALSE(ok) << path;
+  EXPECT_TRUE(printed.empty()) << printed;
+  EXPECT_FALSE(error.empty());
+  EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+  return error;
+}
+
 /** Loads a file that must fail: false, an empty cloud, a one-line reason naming the
  * file, and nothing on stderr. Returns the reason. */
 std::string
@@ -124,14 +141,9 @@ expectSamplesFailure(const std::string& path)
   cloud.width = 7; // something to be cleared
   cloud.height = 1;
   cloud.data.assign(84, 1);
-  std::string error;
-  ::testing::internal::CaptureStderr();
-  const bool ok = pcl::cocone::loadPointSamples(path, cloud, &error);
-  const std::string printed = ::testing::internal::GetCapturedStderr();
-  EXPECT_FALSE(ok) << path;
-  EXPECT_TRUE(printed.empty()) << printed;
-  EXPECT_FALSE(error.empty());
-  EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+  const std::string error = expectQuietFailure(path, [&](std::string* reason) {
+    return pcl::cocone::loadPointSamples(path, cloud, reason);
+  });
   EXPECT_NE(error.find(fs::path(path).filename().string()), std::string::npos) << error;
   EXPECT_EQ(cloud.width * cloud.height, 0u);
   EXPECT_TRUE(cloud.data.empty());
@@ -145,15 +157,10 @@ std::string
 expectFacesFailure(const std::string& path)
 {
   std::vector<pcl::Vertices> faces(2);
-  std::string error;
-  ::testing::internal::CaptureStderr();
-  const bool ok = pcl::cocone::loadMeshFaces(path, faces, &error);
-  const std::string printed = ::testing::internal::GetCapturedStderr();
-  EXPECT_FALSE(ok) << path;
-  EXPECT_TRUE(printed.empty()) << printed;
+  const std::string error = expectQuietFailure(path, [&](std::string* reason) {
+    return pcl::cocone::loadMeshFaces(path, faces, reason);
+  });
   EXPECT_TRUE(faces.empty());
-  EXPECT_FALSE(error.empty());
-  EXPECT_EQ(error.find('\n'), std::string::npos) << error;
   return error;
 }
 

@@ -3,9 +3,10 @@
 // clouds written here. The PNGs it writes are checked without an image library: the
 // size from the IHDR chunk, the pixels by inflating IDAT with zlib and undoing the
 // per-row filters, so that a blank (all background) picture is caught.
+#include "support/process.h"
+
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -14,10 +15,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <ostream>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -27,6 +28,12 @@ namespace {
 
 namespace fs = std::filesystem;
 using Args = std::vector<std::string>;
+using pcl::cocone::test::expectOneLineFailure;
+using pcl::cocone::test::expectSuccess;
+using pcl::cocone::test::readText;
+using pcl::cocone::test::runTool;
+using pcl::cocone::test::shellQuote;
+using pcl::cocone::test::ToolRun;
 
 // The build passes the folder of the tool and, when found, the path of xvfb-run.
 #ifdef PCL_COCONE_TOOL_DIR
@@ -41,37 +48,6 @@ const char* const kXvfbRun = nullptr;
 #endif
 
 const std::string kTool = "pcl_cocone_render";
-
-struct ToolRun
-{
-  int exit_code = -1; // -1 when the process did not exit normally
-  std::string out;
-  std::string err;
-
-  std::size_t
-  errLines() const
-  {
-    return static_cast<std::size_t>(std::count(err.begin(), err.end(), '\n'));
-  }
-};
-
-std::string
-shellQuote(const std::string& text)
-{
-  std::string quoted = "'";
-  for (const char c : text)
-    quoted += (c == '\'') ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
-
-std::string
-readText(const fs::path& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // --- a small mesh and clouds ---------------------------------------------------------
 
@@ -125,6 +101,19 @@ icosphere(int levels, std::vector<Vec>& vertices, std::vector<Tri>& triangles)
     }
     triangles = std::move(finer);
   }
+}
+
+/** The body that OFF and ASCII PLY share: a line "x y z" per vertex, then a line
+ * "3 a b c" per triangle. */
+void
+writeMeshBody(std::ostream& out,
+              const std::vector<Vec>& vertices,
+              const std::vector<Tri>& triangles)
+{
+  for (const Vec& v : vertices)
+    out << v[0] << " " << v[1] << " " << v[2] << "\n";
+  for (const Tri& t : triangles)
+    out << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
 }
 
 // --- reading PNG ---------------------------------------------------------------------
@@ -300,20 +289,14 @@ protected:
 
     std::ostringstream off;
     off << "OFF\n" << vertices.size() << " " << triangles.size() << " 0\n";
-    for (const Vec& v : vertices)
-      off << v[0] << " " << v[1] << " " << v[2] << "\n";
-    for (const Tri& t : triangles)
-      off << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
+    writeMeshBody(off, vertices, triangles);
     writeText("icosphere.off", off.str());
 
     std::ostringstream ply;
     ply << "ply\nformat ascii 1.0\nelement vertex " << vertices.size()
         << "\nproperty float x\nproperty float y\nproperty float z\nelement face "
         << triangles.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
-    for (const Vec& v : vertices)
-      ply << v[0] << " " << v[1] << " " << v[2] << "\n";
-    for (const Tri& t : triangles)
-      ply << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
+    writeMeshBody(ply, vertices, triangles);
     writeText("icosphere.ply", ply.str());
 
     // The vertices as a cloud whose band around the equator is flagged, in the layout
@@ -369,22 +352,14 @@ protected:
     static int counter = 0;
     const std::string id = std::to_string(counter++);
     const fs::path out = path("stdout_" + id), err = path("stderr_" + id);
-    std::string command = display ? shellQuote(kXvfbRun) + " -a " : "env -u DISPLAY ";
-    command += shellQuote((fs::path(kToolDir) / kTool).string());
-    for (const std::string& arg : args)
-      command += " " + shellQuote(arg);
-    command += " > " + shellQuote(out.string()) + " 2> " + shellQuote(err.string());
+    const std::string launcher =
+        display ? shellQuote(kXvfbRun) + " -a " : "env -u DISPLAY ";
     ToolRun result;
     // xvfb-run -a can lose the race for a display number to another test starting
     // Xvfb at the same moment, or fail to clean up its temporary folder on a busy
     // machine; both are xvfb-run's own errors, not the tool's: try again.
     for (int attempt = 0; attempt < 3; ++attempt) {
-      const int status = std::system(command.c_str());
-      result = ToolRun();
-      if (status != -1 && WIFEXITED(status))
-        result.exit_code = WEXITSTATUS(status);
-      result.out = readText(out);
-      result.err = readText(err);
+      result = runTool(launcher, fs::path(kToolDir) / kTool, args, out, err);
       if (!display || (result.err.find("Xvfb failed to start") == std::string::npos &&
                        result.err.find("xvfb-run: error") == std::string::npos))
         break;
@@ -408,23 +383,6 @@ fs::path Render::dir_;
   if (!kXvfbRun)                                                                       \
   GTEST_SKIP() << "xvfb-run was not found when the tests were configured (apt-get "    \
                   "install xvfb): rendering needs an X display"
-
-void
-expectOneLineFailure(const ToolRun& result, const std::string& expected)
-{
-  EXPECT_EQ(result.exit_code, 1);
-  EXPECT_EQ(result.errLines(), 1u) << "stderr: " << result.err;
-  EXPECT_TRUE(!result.err.empty() && result.err.back() == '\n') << result.err;
-  EXPECT_NE(result.err.find(expected), std::string::npos)
-      << "stderr '" << result.err << "' should mention '" << expected << "'";
-}
-
-void
-expectSuccess(const ToolRun& result)
-{
-  EXPECT_EQ(result.exit_code, 0) << "stdout: " << result.out << "\nstderr: " << result.err;
-  EXPECT_EQ(result.err, "");
-}
 
 /** Checks the size of the PNG at \a file and that it is not blank; returns it. */
 Image

@@ -7,16 +7,16 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
+#include "support/process.h"
+#include "support/shapes.h"
+
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -30,6 +30,12 @@ namespace {
 
 namespace fs = std::filesystem;
 using Args = std::vector<std::string>;
+using pcl::cocone::test::expectOneLineFailure;
+using pcl::cocone::test::expectSuccess;
+using pcl::cocone::test::readText;
+using pcl::cocone::test::runTool;
+using pcl::cocone::test::sampleTrefoilKnot;
+using pcl::cocone::test::ToolRun;
 
 const std::string kBoundary = "pcl_boundary_sample_estimation";
 const std::string kReconstruction = "pcl_cocone_reconstruction";
@@ -46,38 +52,6 @@ const char* const kToolDir = nullptr;
 
 constexpr std::size_t kSpherePoints = 3000;
 constexpr std::size_t kNanEvery = 100; // a NaN row after every 100th point
-
-/** What a tool run left behind. */
-struct ToolRun
-{
-  int exit_code = -1; // -1 when the process did not exit normally
-  std::string out;
-  std::string err;
-
-  std::size_t
-  errLines() const
-  {
-    return static_cast<std::size_t>(std::count(err.begin(), err.end(), '\n'));
-  }
-};
-
-std::string
-shellQuote(const std::string& text)
-{
-  std::string quoted = "'";
-  for (const char c : text)
-    quoted += (c == '\'') ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
-
-std::string
-readText(const fs::path& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 std::vector<pcl::PointXYZ>
 fibonacciSphere(std::size_t n)
@@ -195,18 +169,8 @@ protected:
   {
     static int counter = 0;
     const std::string id = std::to_string(counter++);
-    const fs::path out = path("stdout_" + id), err = path("stderr_" + id);
-    std::string command = shellQuote((fs::path(kToolDir) / tool).string());
-    for (const std::string& arg : args)
-      command += " " + shellQuote(arg);
-    command += " > " + shellQuote(out.string()) + " 2> " + shellQuote(err.string());
-    const int status = std::system(command.c_str());
-    ToolRun result;
-    if (status != -1 && WIFEXITED(status))
-      result.exit_code = WEXITSTATUS(status);
-    result.out = readText(out);
-    result.err = readText(err);
-    return result;
+    return runTool("", fs::path(kToolDir) / tool, args, path("stdout_" + id),
+                   path("stderr_" + id));
   }
 
   static fs::path dir_;
@@ -220,31 +184,13 @@ std::vector<pcl::PointXYZ> Tools::hemisphere_;
 
 // --- checking outputs ----------------------------------------------------------------
 
-/** The failure every bad case must give: exit code 1, exactly one line on stderr
- * (mentioning \a expected), and nothing computed after a bad argument. */
-void
-expectOneLineFailure(const ToolRun& result, const std::string& expected)
-{
-  EXPECT_EQ(result.exit_code, 1);
-  EXPECT_EQ(result.errLines(), 1u) << "stderr: " << result.err;
-  EXPECT_TRUE(!result.err.empty() && result.err.back() == '\n') << result.err;
-  EXPECT_NE(result.err.find(expected), std::string::npos)
-      << "stderr '" << result.err << "' should mention '" << expected << "'";
-}
-
+/** After a bad argument a tool must stop before it loads anything. */
 void
 expectArgumentError(const ToolRun& result, const std::string& expected)
 {
   expectOneLineFailure(result, expected);
   EXPECT_EQ(result.out.find("Loading"), std::string::npos)
       << "the tool went on after a bad argument: " << result.out;
-}
-
-void
-expectSuccess(const ToolRun& result)
-{
-  EXPECT_EQ(result.exit_code, 0) << "stderr: " << result.err;
-  EXPECT_EQ(result.err, "");
 }
 
 pcl::PCLPointCloud2
@@ -540,6 +486,47 @@ TEST_F(Tools, ReconstructionOfHemisphereKeepsItsBoundaryOpen)
   EXPECT_TRUE(s.manifold);
   EXPECT_EQ(s.loops, 1);
   EXPECT_EQ(s.euler, 1); // a disk
+}
+
+// A trefoil-knot tube far too sparse for its thinness: BOUNDARY flags nearly every
+// sample, and boundary samples cast no vote. The tool must say so, not leave the user
+// with a scrap of surface (or nothing) and no reason.
+TEST_F(Tools, ReconstructionOfTooSparseCloudSaysWhy)
+{
+  const auto knotFile = [&](std::size_t n) {
+    std::vector<pcl::PointXYZ> points;
+    for (const Eigen::Vector3d& p : sampleTrefoilKnot(n).points)
+      points.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()),
+                          static_cast<float>(p.z()));
+    const std::string name = "knot" + std::to_string(n) + ".xyz";
+    writeXyz(name, points);
+    return path(name).string();
+  };
+
+  // 1000 samples: a few triangles, and a note on stdout.
+  const ToolRun some = run(kReconstruction, {knotFile(1000), path("knot1000.ply").string()});
+  expectSuccess(some);
+  EXPECT_NE(some.out.find("note: "), std::string::npos) << some.out;
+  EXPECT_NE(some.out.find("boundary samples: the cloud is too sparse"), std::string::npos)
+      << some.out;
+  const Summary s = meshSummary(some.out);
+  ASSERT_TRUE(s.found) << some.out;
+  EXPECT_LT(s.vertices, 500); // most of the tube stays uncovered, as the note says
+
+  // 600 samples: no triangle at all; the one-line failure gives the reason.
+  const std::string sparse = knotFile(600);
+  expectOneLineFailure(run(kReconstruction, {sparse, path("knot600.ply").string()}),
+                       "no triangle: 600 of 600 points are boundary samples");
+
+  // Without boundary detection the same cloud gives a closed surface, and no note.
+  const ToolRun all =
+      run(kReconstruction, {sparse, path("knot600_all.ply").string(), "-no_boundary"});
+  expectSuccess(all);
+  EXPECT_EQ(all.out.find("note:"), std::string::npos) << all.out;
+  const Summary t = meshSummary(all.out);
+  ASSERT_TRUE(t.found) << all.out;
+  EXPECT_TRUE(t.closed);
+  EXPECT_EQ(t.vertices, 600);
 }
 
 TEST_F(Tools, ReconstructionDropsNanPointsAndRenumbersVertices)

@@ -6,15 +6,14 @@
 // UniformSampling), and bad input.
 #include <pcl/cocone/cocone_reconstruction.h>
 #include <pcl/cocone/mesh_topology.h>
-#include <pcl/cocone/point_io.h>
 #include <pcl/cocone/voronoi_cocone.h>
 #include <pcl/cocone/voronoi_decimation.h>
 #include <pcl/common/io.h>
-#include <pcl/conversions.h>
 #include <pcl/filters/uniform_sampling.h>
 #include <pcl/filters/voxel_grid.h>
 #include <pcl/point_types.h>
 
+#include <support/clouds.h>
 #include <support/data_paths.h>
 #include <support/mesh_checks.h>
 #include <support/shapes.h>
@@ -54,27 +53,6 @@ using Decimation = pcl::VoronoiDecimation<pcl::PointXYZ>;
 
 constexpr double kPi = 3.14159265358979323846;
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
-
-Cloud::Ptr
-toCloud(const Points& points)
-{
-  Cloud::Ptr cloud(new Cloud);
-  for (const Eigen::Vector3d& p : points)
-    cloud->push_back(pcl::PointXYZ(static_cast<float>(p.x()), static_cast<float>(p.y()),
-                                   static_cast<float>(p.z())));
-  return cloud;
-}
-
-/** The points as the filter sees them (float coordinates, widened). */
-Points
-toPoints(const Cloud& cloud)
-{
-  Points points;
-  points.reserve(cloud.size());
-  for (const pcl::PointXYZ& p : cloud)
-    points.emplace_back(p.x, p.y, p.z);
-  return points;
-}
 
 bool
 isFinite(const pcl::PointXYZ& p)
@@ -727,24 +705,6 @@ TEST(VoronoiDecimation, DenseCapEndsAboutAsDenseAsTheRest)
 // =================================================================================
 // Paper, table 2
 
-struct DataSet
-{
-  Cloud::Ptr cloud;
-  std::vector<TriangleIndices> reference; // the file's own mesh, if any
-};
-
-DataSet
-loadDataSet(const std::string& path)
-{
-  DataSet data;
-  pcl::PCLPointCloud2 blob;
-  std::string error;
-  EXPECT_TRUE(pcl::cocone::loadPointSamples(path, blob, &error)) << error;
-  data.cloud.reset(new Cloud);
-  pcl::fromPCLPointCloud2(blob, *data.cloud);
-  return data;
-}
-
 struct TableRow
 {
   const char* name;
@@ -792,10 +752,10 @@ reportTableRow(const Cloud::Ptr& cloud, const TableRow& paper, const std::string
 TEST(VoronoiDecimationData, BunnyTable2)
 {
   PCL_COCONE_REQUIRE_DATA_FILE(path, "bun_zipper_35947.ply");
-  const DataSet data = loadDataSet(path);
-  ASSERT_EQ(data.cloud->size(), 35947u);
+  const Cloud::Ptr cloud = loadCloud(path);
+  ASSERT_EQ(cloud->size(), 35947u);
   const std::array<double, 2> removed
-      = reportTableRow(data.cloud, {"BUNNY", 35947, 11171, 7747}, "bunny");
+      = reportTableRow(cloud, {"BUNNY", 35947, 11171, 7747}, "bunny");
   EXPECT_NEAR(removed[0], 68.9, 10.0) << "percent removed at rho 0.3";
   EXPECT_NEAR(removed[1], 78.4, 10.0) << "percent removed at rho 0.4";
 }
@@ -804,20 +764,19 @@ TEST(VoronoiDecimationData, BunnyTable2)
 TEST(VoronoiDecimationData, MannequinTable2)
 {
   PCL_COCONE_REQUIRE_DATA_FILE(path, "mannequin_11703.off");
-  reportTableRow(loadDataSet(path).cloud, {"MANNEQUIN", 12772, 5616, 4408},
-                 "mannequin");
+  reportTableRow(loadCloud(path), {"MANNEQUIN", 12772, 5616, 4408}, "mannequin");
 }
 
 TEST(VoronoiDecimationData, FootTable2)
 {
   PCL_COCONE_REQUIRE_DATA_FILE(path, "foot_10010.off");
-  reportTableRow(loadDataSet(path).cloud, {"FOOT", 20021, 3359, 2247}, "foot");
+  reportTableRow(loadCloud(path), {"FOOT", 20021, 3359, 2247}, "foot");
 }
 
 TEST(VoronoiDecimationData, RockerArmTable2)
 {
   PCL_COCONE_REQUIRE_DATA_FILE(path, "rocker-arm_10044.off");
-  reportTableRow(loadDataSet(path).cloud, {"ROCKER", 40177, 12685, 8025}, "rocker-arm");
+  reportTableRow(loadCloud(path), {"ROCKER", 40177, 12685, 8025}, "rocker-arm");
 }
 
 // =================================================================================
@@ -1132,8 +1091,7 @@ TEST(VoronoiDecimationTopology, Genus3KeepsItsTopology)
 TEST(VoronoiDecimationTopology, BunnyKeepsItsGenus)
 {
   PCL_COCONE_REQUIRE_DATA_FILE(path, "bun_zipper_35947.ply");
-  const DataSet data = loadDataSet(path);
-  const Comparison c = compareDecimations(data.cloud, "bunny", false);
+  const Comparison c = compareDecimations(loadCloud(path), "bunny", false);
   EXPECT_LT(c.ours, 0.02);
 }
 

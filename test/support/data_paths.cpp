@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "support/data_paths.h"
 
+#include <pcl/cocone/point_io.h>
+#include <pcl/conversions.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <system_error>
@@ -39,6 +42,17 @@ dataFile(const std::string& file)
   if (!std::filesystem::is_regular_file(path, ec))
     return std::string();
   return path.string();
+}
+
+pcl::PointCloud<pcl::PointXYZ>::Ptr
+loadCloud(const std::string& path)
+{
+  pcl::PCLPointCloud2 blob;
+  std::string error;
+  EXPECT_TRUE(pcl::cocone::loadPointSamples(path, blob, &error)) << error;
+  auto cloud = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  pcl::fromPCLPointCloud2(blob, *cloud);
+  return cloud;
 }
 
 } // namespace test

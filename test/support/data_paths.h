@@ -3,6 +3,9 @@
 // ../shared/data); tests that need one skip with a clear message when it is absent.
 #pragma once
 
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
 #include <gtest/gtest.h>
 
 #include <string>
@@ -19,6 +22,11 @@ dataDirectory();
 /** Full path of \a file in the data folder, or an empty string if it is not there. */
 std::string
 dataFile(const std::string& file);
+
+/** The samples of the file at \a path as PointXYZ; a failed read is a test failure and
+ * gives an empty cloud. */
+pcl::PointCloud<pcl::PointXYZ>::Ptr
+loadCloud(const std::string& path);
 
 } // namespace test
 } // namespace cocone

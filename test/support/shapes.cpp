@@ -600,6 +600,29 @@ planarDistanceToSlab(double x, double y)
   return 0;
 }
 
+// ---------------------------------------------------------------------------------
+// Unit sphere: whole, with a dense cap, and the upper half.
+
+/** The point of the unit sphere at height \a z and azimuth \a a (also its outward
+ * normal). */
+Eigen::Vector3d
+unitSpherePoint(double z, double a)
+{
+  const double s = std::sqrt(std::max(0.0, 1 - z * z));
+  return Eigen::Vector3d(s * std::cos(a), s * std::sin(a), z);
+}
+
+/** No rim, and the medial axis is the centre alone. */
+void
+setWholeUnitSphereFacts(SampledShape& shape)
+{
+  shape.distance_to_rim = [](const Eigen::Vector3d&) { return kInfinity; };
+  shape.local_feature_size = [](const Eigen::Vector3d&) { return 1.0; };
+  shape.distance_to_surface = [](const Eigen::Vector3d& x) {
+    return std::abs(x.norm() - 1);
+  };
+}
+
 } // namespace
 
 // ---------------------------------------------------------------------------------
@@ -616,16 +639,11 @@ sampleSphere(std::size_t n, std::uint32_t seed)
       [](Random& random, Eigen::Vector3d& p, Eigen::Vector3d& normal) {
         const double z = random.uniform(-1, 1);
         const double a = random.uniform(0, 2 * kPi);
-        const double s = std::sqrt(std::max(0.0, 1 - z * z));
-        p = Eigen::Vector3d(s * std::cos(a), s * std::sin(a), z);
+        p = unitSpherePoint(z, a);
         normal = p;
       },
       shape.area);
-  shape.distance_to_rim = [](const Eigen::Vector3d&) { return kInfinity; };
-  shape.local_feature_size = [](const Eigen::Vector3d&) { return 1.0; };
-  shape.distance_to_surface = [](const Eigen::Vector3d& x) {
-    return std::abs(x.norm() - 1);
-  };
+  setWholeUnitSphereFacts(shape);
   return shape;
 }
 
@@ -647,17 +665,12 @@ sampleSphereWithDenseCap(std::size_t n, std::uint32_t seed)
         const bool cap = random.uniform() < cap_share;
         const double z = cap ? random.uniform(cap_z, 1) : random.uniform(-1, cap_z);
         const double a = random.uniform(0, 2 * kPi);
-        const double s = std::sqrt(std::max(0.0, 1 - z * z));
-        p = Eigen::Vector3d(s * std::cos(a), s * std::sin(a), z);
+        p = unitSpherePoint(z, a);
         normal = p;
       },
       weighted_area,
       [=](const Eigen::Vector3d& p) { return p.z() >= cap_z ? density : 1.0; });
-  shape.distance_to_rim = [](const Eigen::Vector3d&) { return kInfinity; };
-  shape.local_feature_size = [](const Eigen::Vector3d&) { return 1.0; };
-  shape.distance_to_surface = [](const Eigen::Vector3d& x) {
-    return std::abs(x.norm() - 1);
-  };
+  setWholeUnitSphereFacts(shape);
   return shape;
 }
 
@@ -847,8 +860,7 @@ sampleHemisphere(std::size_t n, std::uint32_t seed)
       [](Random& random, Eigen::Vector3d& p, Eigen::Vector3d& normal) {
         const double z = random.uniform(0, 1);
         const double a = random.uniform(0, 2 * kPi);
-        const double s = std::sqrt(std::max(0.0, 1 - z * z));
-        p = Eigen::Vector3d(s * std::cos(a), s * std::sin(a), z);
+        p = unitSpherePoint(z, a);
         normal = p;
       },
       shape.area);

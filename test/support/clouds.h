@@ -1,0 +1,53 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// From the analytic samples (std::vector<Eigen::Vector3d>) to PCL clouds and back.
+// Header-only and free of GTest: the benchmarks, which are built without the test
+// support library, can include it.
+#pragma once
+
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace pcl {
+namespace cocone {
+namespace test {
+
+/** An unorganized, dense cloud of \a points (narrowed to float); the fields other than
+ * x, y, z keep their defaults. */
+template <typename PointT = pcl::PointXYZ>
+typename pcl::PointCloud<PointT>::Ptr
+toCloud(const std::vector<Eigen::Vector3d>& points)
+{
+  auto cloud = pcl::make_shared<pcl::PointCloud<PointT>>();
+  cloud->resize(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    (*cloud)[i].x = static_cast<float>(points[i].x());
+    (*cloud)[i].y = static_cast<float>(points[i].y());
+    (*cloud)[i].z = static_cast<float>(points[i].z());
+  }
+  cloud->width = static_cast<std::uint32_t>(points.size());
+  cloud->height = 1;
+  cloud->is_dense = true;
+  return cloud;
+}
+
+/** The points as the algorithms see them (float coordinates, widened). */
+template <typename PointT>
+std::vector<Eigen::Vector3d>
+toPoints(const pcl::PointCloud<PointT>& cloud)
+{
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(cloud.size());
+  for (const PointT& p : cloud)
+    points.emplace_back(p.x, p.y, p.z);
+  return points;
+}
+
+} // namespace test
+} // namespace cocone
+} // namespace pcl
