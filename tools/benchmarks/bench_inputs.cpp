@@ -175,22 +175,6 @@ generatedShapes()
   };
 }
 
-pcl::PointCloud<pcl::PointXYZ>::Ptr
-toCloud(const std::vector<Eigen::Vector3d>& points)
-{
-  auto cloud = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
-  cloud->resize(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    (*cloud)[i].x = static_cast<float>(points[i].x());
-    (*cloud)[i].y = static_cast<float>(points[i].y());
-    (*cloud)[i].z = static_cast<float>(points[i].z());
-  }
-  cloud->width = static_cast<std::uint32_t>(points.size());
-  cloud->height = 1;
-  cloud->is_dense = true;
-  return cloud;
-}
-
 bool
 loadFileInput(const std::string& directory, const FileSpec& spec, Input& input, std::string& why)
 {

@@ -13,6 +13,7 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
+#include "support/clouds.h"
 #include "support/shapes.h"
 
 #include <Eigen/Core>
@@ -141,9 +142,8 @@ generatedShapes();
 void
 finishInput(Input& input, std::size_t probes);
 
-/** \brief A point set as a pcl::PointXYZ cloud. */
-pcl::PointCloud<pcl::PointXYZ>::Ptr
-toCloud(const std::vector<Eigen::Vector3d>& points);
+/** A point set as a pcl::PointXYZ cloud (the tests' helper). */
+using test::toCloud;
 
 } // namespace bench
 } // namespace cocone
