@@ -845,6 +845,7 @@ Mesher::stitch(std::vector<std::vector<SampleIndex> >& loops)
   std::vector<SampleIndex> neighbours;
   std::vector<std::array<SampleIndex, 3> > delaunay;
   std::vector<std::vector<SampleIndex> > members(loops.size());
+  std::vector<std::uint8_t> kept_open(loops.size(), 0);
   for (std::size_t h = 0; h < loops.size(); ++h) {
     std::vector<SampleIndex>& vertices = members[h];
     vertices = loops[h];
@@ -865,9 +866,26 @@ Mesher::stitch(std::vector<std::vector<SampleIndex> >& loops)
         vertices.push_back(inner[i]);
       i = j;
     }
-    voronoi_.delaunayTrianglesAmong(vertices, delaunay);
-    for (const auto& t : delaunay)
-      addToPool({t[0], t[1], t[2]}, first_group + static_cast<std::uint32_t>(h));
+    // Any surface spanning a loop has at least the loop's vector area (Stokes), so a
+    // loop whose vector area already makes it a true boundary cannot be stitched. Spare
+    // the long ones (a terrain's outer rim) the Delaunay fill; shorter ones still go
+    // through it, as the polygon fill may grow them into another loop.
+    if (loops[h].size() > kLargestPolygonFill) {
+      Vector vector_area = Vector::Zero();
+      double perimeter = 0;
+      for (std::size_t k = 0; k < loops[h].size(); ++k) {
+        const Vector& a = points_[loops[h][k]];
+        const Vector& b = points_[loops[h][(k + 1) % loops[h].size()]];
+        vector_area += 0.5 * a.cross(b);
+        perimeter += (b - a).norm();
+      }
+      kept_open[h] = isTrueBoundary(vector_area.norm(), perimeter, typicalSpacing(vertices));
+    }
+    if (!kept_open[h]) {
+      voronoi_.delaunayTrianglesAmong(vertices, delaunay);
+      for (const auto& t : delaunay)
+        addToPool({t[0], t[1], t[2]}, first_group + static_cast<std::uint32_t>(h));
+    }
     group_start_.push_back(static_cast<std::uint32_t>(pool_.size()));
   }
   rebuildIncidence();
@@ -889,6 +907,8 @@ Mesher::stitch(std::vector<std::vector<SampleIndex> >& loops)
   std::vector<std::uint32_t> added, on_edge;
   std::vector<TriangleIndices> fill;
   for (std::size_t h = 0; h < loops.size(); ++h) {
+    if (kept_open[h])
+      continue;
     const std::uint32_t group = first_group + static_cast<std::uint32_t>(h);
     const std::vector<SampleIndex>& loop = loops[h];
     double perimeter = 0;
