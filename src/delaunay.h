@@ -32,11 +32,9 @@ using VertexBase = CGAL::Triangulation_vertex_base_with_info_3<SampleIndex, Kern
 
 constexpr std::uint32_t kNoCellIndex = std::numeric_limits<std::uint32_t>::max();
 
-/** A Delaunay cell that stores its circumcenter (the Voronoi vertex) inline and an index
- * for per-cell arrays. Cells created later (by vertex removal) start with an unknown
- * center and kNoCellIndex; changing a vertex forgets the center, as CGAL's own
- * Delaunay_triangulation_cell_base_with_circumcenter_3 does (which allocates each
- * center on the heap instead). */
+/** A Delaunay cell with an index for per-cell arrays (kNoCellIndex until numbered).
+ * Circumcenters live in such an array rather than in the cell: a smaller cell makes
+ * the triangulation itself faster, and the centers are needed only after it. */
 template <typename GT, typename Cb = CGAL::Delaunay_triangulation_cell_base_3<GT>>
 class VoronoiCellBase : public Cb
 {
@@ -66,25 +64,6 @@ public:
   : Cb(v0, v1, v2, v3, n0, n1, n2, n3)
   {}
 
-  void
-  set_vertex(int i, Vertex_handle v)
-  {
-    forgetCenter();
-    Cb::set_vertex(i, v);
-  }
-  void
-  set_vertices()
-  {
-    forgetCenter();
-    Cb::set_vertices();
-  }
-  void
-  set_vertices(Vertex_handle v0, Vertex_handle v1, Vertex_handle v2, Vertex_handle v3)
-  {
-    forgetCenter();
-    Cb::set_vertices(v0, v1, v2, v3);
-  }
-
   /** Index into per-cell arrays; kNoCellIndex when the cell has none. */
   std::uint32_t&
   cellIndex()
@@ -97,33 +76,7 @@ public:
     return index_;
   }
 
-  /** The circumcenter, computed on first use. Not thread-safe on first use: fill every
-   * center with storeCenter() before reading concurrently. */
-  const Eigen::Vector3d&
-  center() const
-  {
-    if (std::isnan(center_.x()))
-      storeCenter();
-    return center_;
-  }
-  void
-  storeCenter() const
-  {
-    const auto& p0 = this->vertex(0)->point();
-    const auto& p1 = this->vertex(1)->point();
-    const auto& p2 = this->vertex(2)->point();
-    const auto& p3 = this->vertex(3)->point();
-    const auto c = CGAL::circumcenter(p0, p1, p2, p3);
-    center_ = Eigen::Vector3d(c.x(), c.y(), c.z());
-  }
-
 private:
-  void
-  forgetCenter()
-  {
-    center_.x() = std::numeric_limits<double>::quiet_NaN();
-  }
-  mutable Eigen::Vector3d center_{std::numeric_limits<double>::quiet_NaN(), 0, 0};
   std::uint32_t index_ = kNoCellIndex;
 };
 
@@ -191,11 +144,17 @@ struct CellGeometry
   double radius = 0;
 };
 
-/** Computes the poles, pole vector and height of the cell of \a v from its star. */
+/** The circumcenter of a finite cell (its Voronoi vertex). */
+Eigen::Vector3d
+circumcenter(CellHandle c);
+
+/** Computes the poles, pole vector and height of the cell of \a v from its star;
+ * \a centers holds the circumcenters of the finite cells by cellIndex. */
 void
 computePoles(const Delaunay& dt,
              VertexHandle v,
              const std::vector<CellHandle>& star,
+             const std::vector<Eigen::Vector3d>& centers,
              CellGeometry& geometry);
 
 /** Unit outward normal of the convex-hull facet (c, i): c is finite and its neighbour
@@ -208,12 +167,13 @@ hullFacetNormal(CellHandle c, int i);
  * finite cell or from the cell of lower index (not address: the edge is clipped from
  * that side, and the rounding must not change from run to run). For each edge that
  * meets the cocone, calls on_marked(c, i) so that the caller can record the mark.
- * Needs every finite cell numbered (cellIndex). */
+ * Needs every finite cell numbered (cellIndex) and its circumcenter in \a centers. */
 template <typename OnMarked>
 double
 computeCoconeRadius(const Delaunay& dt,
                     VertexHandle v,
                     const std::vector<CellHandle>& star,
+                    const std::vector<Eigen::Vector3d>& centers,
                     const Eigen::Vector3d& axis,
                     double sin_theta,
                     OnMarked&& on_marked)
@@ -230,9 +190,9 @@ computeCoconeRadius(const Delaunay& dt,
       const bool ray = dt.is_infinite(n);
       if (!ray && n->cellIndex() < c->cellIndex())
         continue; // visited from n
-      const Eigen::Vector3d start = c->center() - p;
+      const Eigen::Vector3d start = centers[c->cellIndex()] - p;
       const Eigen::Vector3d direction =
-          ray ? hullFacetNormal(c, i) : Eigen::Vector3d(n->center() - p - start);
+          ray ? hullFacetNormal(c, i) : Eigen::Vector3d(centers[n->cellIndex()] - p - start);
       const EdgeInCocone clip = clipVoronoiEdge(start, direction, ray, axis, sin_theta);
       if (!clip.meets)
         continue;

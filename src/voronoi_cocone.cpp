@@ -162,10 +162,19 @@ hullFacetNormal(CellHandle c, int i)
   return length > 0 ? Eigen::Vector3d(normal / length) : normal;
 }
 
+Eigen::Vector3d
+circumcenter(CellHandle c)
+{
+  const Point center = CGAL::circumcenter(c->vertex(0)->point(), c->vertex(1)->point(),
+                                          c->vertex(2)->point(), c->vertex(3)->point());
+  return {center.x(), center.y(), center.z()};
+}
+
 void
 computePoles(const Delaunay& dt,
              VertexHandle v,
              const std::vector<CellHandle>& star,
+             const std::vector<Eigen::Vector3d>& centers,
              CellGeometry& geometry)
 {
   const Eigen::Vector3d p = toEigen(v->point());
@@ -181,7 +190,7 @@ computePoles(const Delaunay& dt,
       hull_normal_sum += hullFacetNormal(inside, inside->index(c));
       continue;
     }
-    const Eigen::Vector3d& center = c->center();
+    const Eigen::Vector3d& center = centers[c->cellIndex()];
     const double d2 = (center - p).squaredNorm();
     if (d2 > farthest2) {
       farthest2 = d2;
@@ -206,7 +215,7 @@ computePoles(const Delaunay& dt,
   for (const CellHandle& c : star) {
     if (dt.is_infinite(c))
       continue;
-    const Eigen::Vector3d to_center = c->center() - p;
+    const Eigen::Vector3d to_center = centers[c->cellIndex()] - p;
     if (to_center.dot(geometry.pole_vector) >= 0)
       continue;
     const double d2 = to_center.squaredNorm();
@@ -471,10 +480,11 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
     c->cellIndex() = static_cast<std::uint32_t>(cells.size());
     cells.push_back(c);
   }
+  std::vector<Eigen::Vector3d> centers(cells.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 4096),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t k = range.begin(); k != range.end(); ++k)
-                        cells[k]->storeCenter();
+                        centers[k] = circumcenter(cells[k]);
                     });
 
   std::vector<VertexHandle> vertices;
@@ -527,7 +537,7 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
           for (std::uint32_t m = star_offsets[v->info()]; m < star_offsets[v->info() + 1];
                ++m)
             star.push_back(all_cells[star_cells[m]]);
-          computePoles(dt, v, star, geometry);
+          computePoles(dt, v, star, centers, geometry);
           const SampleIndex s = v->info();
           d.pole_vector[s] = geometry.pole_vector;
           d.positive_pole[s] = geometry.positive_pole;
@@ -535,7 +545,7 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
           d.height[s] = geometry.height;
           d.unbounded[s] = geometry.unbounded ? 1 : 0;
           d.radius[s] = computeCoconeRadius(
-              dt, v, star, geometry.pole_vector, sin_theta,
+              dt, v, star, centers, geometry.pole_vector, sin_theta,
               [&](CellHandle c, int i) {
                 marks[c->cellIndex()][c->index(v)] |= static_cast<std::uint8_t>(1u << i);
               });
