@@ -82,22 +82,15 @@ detectBoundarySamples(const VoronoiCocone& voronoi,
       interior[i] = 1;
       queue.push_back(static_cast<SampleIndex>(i));
     }
-  const std::vector<MarkedTriangle>& triangles = voronoi.markedTriangles();
+  std::vector<SampleIndex> neighbours;
   for (std::size_t head = 0; head < queue.size(); ++head) {
     const SampleIndex q = queue[head];
-    for (const std::uint32_t t : voronoi.trianglesAround(q)) {
-      const MarkedTriangle& triangle = triangles[t];
-      for (int k = 0; k < 3; ++k) {
-        if (triangle.vertex[k] != q || !triangle.isMarkedBy(k))
-          continue;
-        for (int m = 0; m < 3; ++m) {
-          const SampleIndex p = triangle.vertex[m];
-          if (m == k || interior[p] || !thin[p] || !agree(p, q))
-            continue;
-          interior[p] = 1;
-          queue.push_back(p);
-        }
-      }
+    voronoi.coconeNeighbours(q, neighbours);
+    for (const SampleIndex p : neighbours) {
+      if (interior[p] || !thin[p] || !agree(p, q))
+        continue;
+      interior[p] = 1;
+      queue.push_back(p);
     }
   }
 

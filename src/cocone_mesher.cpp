@@ -1,4 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "parallel.h"
+
 #include <pcl/cocone/cocone_mesher.h>
 #include <pcl/cocone/mesh_geometry.h>
 #include <pcl/cocone/parameters.h>
@@ -7,7 +9,6 @@
 #include <Eigen/Geometry>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
@@ -31,7 +32,6 @@ namespace {
 using Vector = Eigen::Vector3d;
 
 constexpr std::uint32_t kCoconeGroup = 0;
-constexpr std::uint32_t kNoTriangle = std::numeric_limits<std::uint32_t>::max();
 // Triangles of polygon fills (not Delaunay triangles): never offered to a walk.
 constexpr std::uint32_t kPolygonGroup = std::numeric_limits<std::uint32_t>::max();
 // Loops longer than this are not filled as polygons (O(m^3) time, O(m^2) memory).
@@ -164,6 +164,13 @@ private:
   void measureSpacing();
   double typicalSpacing(const std::vector<SampleIndex>& samples) const;
   bool isTrueBoundary(double area, double perimeter, double spacing) const;
+  double loopLength(const std::vector<SampleIndex>& loop) const;
+  /** Corners of the axis-aligned bounding box of triangle \a t. */
+  std::pair<Vector, Vector> boundingBox(const TriangleIndices& t) const
+  {
+    return {points_[t[0]].cwiseMin(points_[t[1]]).cwiseMin(points_[t[2]]),
+            points_[t[0]].cwiseMax(points_[t[1]]).cwiseMax(points_[t[2]])};
+  }
   void collectCandidates();
   void removeLids();
   bool fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
@@ -179,8 +186,7 @@ private:
   void gridInsert(std::uint32_t t);
   void meshNear(const Vector& low, const Vector& high, std::vector<std::uint32_t>& nearby);
   void meshNear(const TriangleIndices& t, std::vector<std::uint32_t>& nearby);
-  bool crossesMesh(const TriangleIndices& t, std::uint32_t self,
-                   std::vector<std::uint32_t>* blockers);
+  bool crossesMesh(std::uint32_t t);
   double area(const std::vector<std::uint32_t>& triangles) const;
   std::size_t labelFans(SampleIndex v, std::vector<std::uint32_t>& fan,
                         std::vector<std::uint32_t>& label) const;
@@ -236,6 +242,7 @@ private:
   std::vector<SampleIndex> seed_order_;    // samples by decreasing x
   std::vector<SampleIndex> pinched_;       // apexes of forced steps
   std::vector<std::uint32_t> near_;        // scratch of crossesMesh
+  std::vector<std::uint8_t> pinch_queued_; // scratch of resolvePinches, all 0 between calls
   // Edges that may be boundary edges: those the walk could not continue across and
   // those of removed triangles. Every boundary edge of the mesh is among them, so
   // tracing the loops does not need to look at every triangle.
@@ -313,6 +320,16 @@ Mesher::isTrueBoundary(double area, double perimeter, double spacing) const
 {
   return perimeter > 0 &&
          2 * area / perimeter > parameters_.true_boundary_ratio * spacing;
+}
+
+/** Length of a closed loop (the last vertex joins the first). */
+double
+Mesher::loopLength(const std::vector<SampleIndex>& loop) const
+{
+  double length = 0;
+  for (std::size_t k = 0; k < loop.size(); ++k)
+    length += (points_[loop[(k + 1) % loop.size()]] - points_[loop[k]]).norm();
+  return length;
 }
 
 // ---------------------------------------------------------------------------------
@@ -654,7 +671,10 @@ Mesher::resolvePinches(std::vector<std::uint32_t>* removed)
 {
   // Only a forced step can pinch a vertex (every other step keeps one fan per vertex).
   std::vector<SampleIndex> work;
-  std::vector<std::uint8_t> queued(n_, 0);
+  // Called once per growth of every hole: a member, all zero between calls, rather than
+  // n bytes allocated each time.
+  std::vector<std::uint8_t>& queued = pinch_queued_;
+  queued.resize(n_, 0);
   for (const SampleIndex v : pinched_)
     if (!queued[v]) {
       work.push_back(v);
@@ -872,14 +892,11 @@ Mesher::stitch(std::vector<std::vector<SampleIndex> >& loops)
     // through it, as the polygon fill may grow them into another loop.
     if (loops[h].size() > kLargestPolygonFill) {
       Vector vector_area = Vector::Zero();
-      double perimeter = 0;
-      for (std::size_t k = 0; k < loops[h].size(); ++k) {
-        const Vector& a = points_[loops[h][k]];
-        const Vector& b = points_[loops[h][(k + 1) % loops[h].size()]];
-        vector_area += 0.5 * a.cross(b);
-        perimeter += (b - a).norm();
-      }
-      kept_open[h] = isTrueBoundary(vector_area.norm(), perimeter, typicalSpacing(vertices));
+      for (std::size_t k = 0; k < loops[h].size(); ++k)
+        vector_area +=
+            0.5 * points_[loops[h][k]].cross(points_[loops[h][(k + 1) % loops[h].size()]]);
+      kept_open[h] = isTrueBoundary(vector_area.norm(), loopLength(loops[h]),
+                                    typicalSpacing(vertices));
     }
     if (!kept_open[h]) {
       voronoi_.delaunayTrianglesAmong(vertices, delaunay);
@@ -905,17 +922,14 @@ Mesher::stitch(std::vector<std::vector<SampleIndex> >& loops)
 
   std::vector<std::pair<std::uint32_t, int> > frontier;
   std::vector<std::uint32_t> added, on_edge;
-  std::vector<TriangleIndices> fill;
   for (std::size_t h = 0; h < loops.size(); ++h) {
     if (kept_open[h])
       continue;
     const std::uint32_t group = first_group + static_cast<std::uint32_t>(h);
     const std::vector<SampleIndex>& loop = loops[h];
-    double perimeter = 0;
     frontier.clear();
     for (std::size_t k = 0; k < loop.size(); ++k) {
       const SampleIndex a = loop[k], b = loop[(k + 1) % loop.size()];
-      perimeter += (points_[a] - points_[b]).norm();
       meshOnEdge(a, b, on_edge);
       if (on_edge.size() != 1)
         continue;
@@ -927,16 +941,18 @@ Mesher::stitch(std::vector<std::vector<SampleIndex> >& loops)
     if (frontier.size() != loop.size())
       continue;
     const double spacing = typicalSpacing(members[h]);
+    const double perimeter = loopLength(loop);
 
     prune(group);
     added.clear();
     walk(frontier, group, added);
     const bool walk_closes = !added.empty() && closes(loop, added);
+    const double fill_area = area(added);
     PCL_VERBOSE("[pcl::cocone::reconstructSurface] hole of %zu edges: Delaunay fill %s, "
               "size %.2f local spacings\n",
               loop.size(), walk_closes ? "closes it" : "does not close it",
-              2 * area(added) / perimeter / spacing);
-    if (walk_closes && !isTrueBoundary(area(added), perimeter, spacing)) {
+              2 * fill_area / perimeter / spacing);
+    if (walk_closes && !isTrueBoundary(fill_area, perimeter, spacing)) {
       ++report_.stitched_holes;
       report_.stitched_triangles += added.size();
       stitched[h] = 1;
@@ -986,14 +1002,13 @@ Mesher::fillPolygon(std::vector<SampleIndex>& loop, double spacing)
         pinched_.insert(pinched_.end(), oriented_[t].begin(), oriented_[t].end());
       resolvePinches(&removed);
       if (!traceLoopFrom(loop.front(), grown) &&
-          !traceLoopFrom(mesh_degree_[loop.back()] ? loop.back() : loop.front(), grown))
+          !(mesh_degree_[loop.back()] && traceLoopFrom(loop.back(), grown)))
         break;
       loop = grown;
       continue;
     }
-    double perimeter = 0, fill_area = 0;
-    for (std::size_t k = 0; k < loop.size(); ++k)
-      perimeter += (points_[loop[k]] - points_[loop[(k + 1) % loop.size()]]).norm();
+    const double perimeter = loopLength(loop);
+    double fill_area = 0;
     for (const TriangleIndices& t : fill)
       fill_area += 0.5 * orientedNormal(t).norm();
     PCL_VERBOSE(
@@ -1076,8 +1091,6 @@ bool
 Mesher::closes(const std::vector<SampleIndex>& loop,
                const std::vector<std::uint32_t>& added)
 {
-  if (intersectsSurface(added))
-    return false;
   std::vector<std::uint32_t> on_edge;
   for (std::size_t k = 0; k < loop.size(); ++k) {
     meshOnEdge(loop[k], loop[(k + 1) % loop.size()], on_edge);
@@ -1095,7 +1108,8 @@ Mesher::closes(const std::vector<SampleIndex>& loop,
         return false;
     }
   }
-  return true;
+  // Last: the exact intersection tests cost the most.
+  return !intersectsSurface(added);
 }
 
 // Whether a triangle of \a added (already in the mesh) intersects another mesh triangle
@@ -1120,18 +1134,16 @@ Mesher::forEachCell(const Vector& low, const Vector& high, F&& f) const
 void
 Mesher::gridInsert(std::uint32_t t)
 {
-  const TriangleIndices& o = oriented_[t];
-  forEachCell(points_[o[0]].cwiseMin(points_[o[1]]).cwiseMin(points_[o[2]]),
-              points_[o[0]].cwiseMax(points_[o[1]]).cwiseMax(points_[o[2]]),
-              [&](CellKey key) { grid_[key].push_back(t); });
+  const auto [low, high] = boundingBox(oriented_[t]);
+  forEachCell(low, high, [&](CellKey key) { grid_[key].push_back(t); });
 }
 
 // Mesh triangles whose grid cells meet those of t.
 void
 Mesher::meshNear(const TriangleIndices& t, std::vector<std::uint32_t>& nearby)
 {
-  meshNear(points_[t[0]].cwiseMin(points_[t[1]]).cwiseMin(points_[t[2]]),
-           points_[t[0]].cwiseMax(points_[t[1]]).cwiseMax(points_[t[2]]), nearby);
+  const auto [low, high] = boundingBox(t);
+  meshNear(low, high, nearby);
 }
 
 // Mesh triangles whose grid cells meet those of the box [low, high].
@@ -1163,29 +1175,22 @@ Mesher::meshNear(const Vector& low, const Vector& high, std::vector<std::uint32_
   nearby.erase(std::unique(nearby.begin(), nearby.end()), nearby.end());
 }
 
-// Whether triangle t (pool id \a self, or kNoTriangle) crosses a mesh triangle; the
-// ones it crosses go to \a blockers if given.
+// Whether mesh triangle t crosses another mesh triangle.
 bool
-Mesher::crossesMesh(const TriangleIndices& t, std::uint32_t self,
-                    std::vector<std::uint32_t>* blockers)
+Mesher::crossesMesh(std::uint32_t t)
 {
-  meshNear(t, near_);
-  bool crossing = false;
+  meshNear(oriented_[t], near_);
   for (const std::uint32_t u : near_)
-    if (u != self && trianglesIntersect(points_, t, oriented_[u])) {
-      crossing = true;
-      if (blockers == nullptr)
-        return true;
-      blockers->push_back(u);
-    }
-  return crossing;
+    if (u != t && trianglesIntersect(points_, oriented_[t], oriented_[u]))
+      return true;
+  return false;
 }
 
 bool
 Mesher::intersectsSurface(const std::vector<std::uint32_t>& added)
 {
   for (const std::uint32_t t : added)
-    if (crossesMesh(oriented_[t], t, nullptr))
+    if (crossesMesh(t))
       return true;
   return false;
 }
@@ -1228,14 +1233,10 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
   meshNear(low, high, near_);
   std::vector<std::pair<Vector, Vector> > boxes;
   boxes.reserve(near_.size());
-  for (const std::uint32_t u : near_) {
-    const TriangleIndices& o = oriented_[u];
-    boxes.emplace_back(points_[o[0]].cwiseMin(points_[o[1]]).cwiseMin(points_[o[2]]),
-                       points_[o[0]].cwiseMax(points_[o[1]]).cwiseMax(points_[o[2]]));
-  }
+  for (const std::uint32_t u : near_)
+    boxes.push_back(boundingBox(oriented_[u]));
   const auto crosses = [&](const TriangleIndices& t) {
-    const Vector t_low = points_[t[0]].cwiseMin(points_[t[1]]).cwiseMin(points_[t[2]]);
-    const Vector t_high = points_[t[0]].cwiseMax(points_[t[1]]).cwiseMax(points_[t[2]]);
+    const auto [t_low, t_high] = boundingBox(t);
     bool crossing = false;
     for (std::size_t k = 0; k < near_.size(); ++k) {
       if ((boxes[k].second.array() < t_low.array()).any() ||
@@ -1505,14 +1506,9 @@ Mesher::removeCrossings()
           crossing[i].push_back(u);
     }
   };
-  const tbb::blocked_range<std::size_t> all(0, suspects.size(), 64);
-  const unsigned threads = voronoi_.getNumberOfThreads();
-  if (threads == 0)
-    tbb::parallel_for(all, findCrossings);
-  else
-    tbb::task_arena(static_cast<int>(threads)).execute([&] {
-      tbb::parallel_for(all, findCrossings);
-    });
+  detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, suspects.size(), 64), findCrossings);
+  });
 
   // Of each crossing pair the triangle added last goes, suspects in order: removals
   // only shrink the mesh, so the pairs still both in it here are exactly those a
@@ -1599,16 +1595,16 @@ Mesher::run(std::vector<TriangleIndices>& output)
     // Boundary samples cast no vote: when they are the majority, too few triangles are
     // chosen to cover the surface (Power Crust's 1281-point knot: 98% flagged, 11% of
     // the samples used). Say so, with the way out, rather than return a scrap silently.
-    std::size_t flagged = 0;
     for (SampleIndex v = 0; v < n_; ++v)
-      flagged += report_.boundary_samples[v] && voronoi_.representative(v) == v;
-    const std::size_t distinct = voronoi_.numUniqueSamples();
-    if (distinct > 0 && 2 * flagged > distinct)
-      PCL_WARN("[pcl::cocone::reconstructSurface] %zu of %zu distinct samples (%.0f%%) are "
+      report_.distinct_boundary_samples +=
+          report_.boundary_samples[v] && voronoi_.representative(v) == v;
+    report_.distinct_samples = voronoi_.numUniqueSamples();
+    if (report_.tooSparseForBoundaryDetection())
+      PCL_WARN("[pcl::cocone::reconstructSurface] %zu of %zu distinct samples are "
                "boundary samples: the cloud is too sparse for boundary detection at rho "
                "%g, and most of the surface will stay uncovered; a larger rho or no "
                "boundary detection fits it better.\n",
-               flagged, distinct, 100.0 * static_cast<double>(flagged) / distinct,
+               report_.distinct_boundary_samples, report_.distinct_samples,
                parameters_.boundary.ratio_bound);
   }
   else {

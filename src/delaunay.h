@@ -3,6 +3,8 @@
 // shared by the first computation and by decimation. Never installed.
 #pragma once
 
+#include "parallel.h"
+
 #include <pcl/cocone/voronoi_cocone.h>
 
 #include <CGAL/Delaunay_triangulation_3.h>
@@ -10,7 +12,6 @@
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
-#include <tbb/task_arena.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -139,9 +140,7 @@ struct CellGeometry
   Eigen::Vector3d positive_pole = Eigen::Vector3d::Zero(); // centered frame
   Eigen::Vector3d negative_pole = Eigen::Vector3d::Zero(); // centered frame
   bool unbounded = false;
-  bool has_negative_pole = false;
-  double height = 0;
-  double radius = 0;
+  double height = 0; // NaN without a negative pole
 };
 
 /** The circumcenter of a finite cell (its Voronoi vertex). */
@@ -204,19 +203,6 @@ computeCoconeRadius(const Delaunay& dt,
     }
   }
   return std::sqrt(radius2);
-}
-
-/** Runs \a function with at most \a threads workers (0: TBB's default). */
-template <typename Function>
-void
-runInArena(unsigned threads, Function&& function)
-{
-  if (threads == 0) {
-    function();
-    return;
-  }
-  tbb::task_arena arena(static_cast<int>(threads));
-  arena.execute(function);
 }
 
 } // namespace detail

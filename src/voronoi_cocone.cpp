@@ -7,7 +7,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
@@ -224,9 +223,11 @@ computePoles(const Delaunay& dt,
       geometry.negative_pole = to_center + p;
     }
   }
-  geometry.has_negative_pole = negative2 > 0;
-  geometry.height = geometry.has_negative_pole ? std::sqrt(negative2)
-                                               : std::numeric_limits<double>::quiet_NaN();
+  // The geometry is reused from sample to sample: leave no stale pole behind.
+  if (!(negative2 > 0))
+    geometry.negative_pole.setConstant(std::numeric_limits<double>::quiet_NaN());
+  geometry.height = negative2 > 0 ? std::sqrt(negative2)
+                                  : std::numeric_limits<double>::quiet_NaN();
 }
 
 } // namespace detail

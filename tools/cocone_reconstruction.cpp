@@ -11,7 +11,6 @@
 #include <pcl/common/point_tests.h>
 #include <pcl/console/print.h>
 
-#include <algorithm>
 #include <array>
 #include <limits>
 #include <string>
@@ -49,16 +48,16 @@ commandLine()
        verboseOption()});
 }
 
-/** When most points are boundary samples (they cast no vote, so the cocones choose too
- * few triangles to cover the surface), sets \a note to say so and returns true. */
+/** When the reconstruction found the cloud too sparse for boundary detection, sets
+ * \a note to say so, with the way out, and returns true. */
 bool
 sparseNote(const pcl::CoconeReconstruction<pcl::PointXYZ>& cocone, std::string& note)
 {
-  const std::vector<std::uint8_t>& flags = cocone.getBoundarySamples();
-  const auto flagged = static_cast<std::size_t>(std::count(flags.begin(), flags.end(), 1));
-  if (2 * flagged <= flags.size())
+  const pcl::cocone::ReconstructionReport& report = cocone.getReport();
+  if (!report.tooSparseForBoundaryDetection())
     return false;
-  note = std::to_string(flagged) + " of " + std::to_string(flags.size()) +
+  note = std::to_string(report.distinct_boundary_samples) + " of " +
+         std::to_string(report.distinct_samples) +
          " points are boundary samples: the cloud is too sparse for boundary detection "
          "at rho " + formatNumber(cocone.getRatioBound()) +
          "; try a larger -rho or -no_boundary";

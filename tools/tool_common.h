@@ -194,12 +194,6 @@ public:
   void
   done(std::size_t count, const std::string& unit);
 
-  double
-  milliseconds() const
-  {
-    return timer_.toc();
-  }
-
 private:
   pcl::console::TicToc timer_;
 };

@@ -56,6 +56,19 @@ struct ReconstructionReport
   /** BOUNDARY's flags, one per sample (indexed by SampleIndex): 1 for a boundary
    * sample, 0 otherwise; all 0 when detection is off. */
   std::vector<std::uint8_t> boundary_samples;
+  /** Boundary samples among the distinct samples (duplicates not counted). */
+  std::size_t distinct_boundary_samples = 0;
+  std::size_t distinct_samples = 0; ///< distinct samples (VoronoiCocone::numUniqueSamples)
+  /** \brief Whether most distinct samples are boundary samples. Those cast no vote, so
+   * the cocones then choose too few triangles to cover the surface: the cloud is too
+   * sparse for boundary detection at this rho (a larger rho, or no detection, fits it
+   * better). The reconstruction warns when this holds.
+   * \return true when more than half of the distinct samples are boundary samples */
+  bool
+  tooSparseForBoundaryDetection() const
+  {
+    return 2 * distinct_boundary_samples > distinct_samples;
+  }
   std::size_t candidate_triangles = 0; ///< Delaunay triangles chosen by the cocones
   /** Candidates removed because they covered a true boundary (a hole too small against
    * the local feature size for BOUNDARY to flag its rim, but too large against the
