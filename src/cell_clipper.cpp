@@ -243,6 +243,23 @@ CoconeCellClipper::measureRadius(const Eigen::Vector3d& axis,
   return result;
 }
 
+void
+CoconeCellClipper::clipBox(const Eigen::Vector3d& axis,
+                           double half_width,
+                           double half_height,
+                           const std::vector<Eigen::Vector3d>& offsets,
+                           std::vector<int>* neighbours)
+{
+  resetToBox(axis, half_width, half_height);
+  clipAll(offsets);
+  if (neighbours) {
+    neighbours->clear();
+    for (const Face& face : faces_)
+      if (face.plane >= 0)
+        neighbours->push_back(face.plane);
+  }
+}
+
 CoconeCellClipper::Result
 CoconeCellClipper::coconeRadius(const Eigen::Vector3d& axis,
                                 double sin_theta,
@@ -254,14 +271,7 @@ CoconeCellClipper::coconeRadius(const Eigen::Vector3d& axis,
   // Every point of the cocone closer than `limit` lies in this box: |y.axis| <=
   // sin(theta) |y| <= sin(theta) limit.
   const double half_width = std::max(1.0, margin) * limit;
-  resetToBox(axis, half_width, half_width * sin_theta * (1 + 1e-9));
-  clipAll(offsets);
-  if (neighbours) {
-    neighbours->clear();
-    for (const Face& face : faces_)
-      if (face.plane >= 0)
-        neighbours->push_back(face.plane);
-  }
+  clipBox(axis, half_width, half_width * sin_theta * (1 + 1e-9), offsets, neighbours);
   return measureRadius(axis, sin_theta, limit);
 }
 
@@ -272,12 +282,7 @@ CoconeCellClipper::fullCell(const Eigen::Vector3d& axis,
                             const std::vector<Eigen::Vector3d>& offsets,
                             std::vector<int>& neighbours)
 {
-  resetToBox(axis, extent, extent);
-  clipAll(offsets);
-  neighbours.clear();
-  for (const Face& face : faces_)
-    if (face.plane >= 0)
-      neighbours.push_back(face.plane);
+  clipBox(axis, extent, extent, offsets, &neighbours);
   // The cube is no cocone-shaped box: an edge reaching it is a ray to infinity, and a
   // cocone point on it lies at least `extent` away.
   return measureRadius(axis, sin_theta, extent);

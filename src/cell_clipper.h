@@ -64,6 +64,14 @@ public:
 private:
   void
   clipAll(const std::vector<Eigen::Vector3d>& offsets);
+  /** Resets to the box, clips it by every neighbour and lists the neighbours whose
+   * planes bound the result in \a neighbours (if given). */
+  void
+  clipBox(const Eigen::Vector3d& axis,
+          double half_width,
+          double half_height,
+          const std::vector<Eigen::Vector3d>& offsets,
+          std::vector<int>* neighbours);
   Result
   measureRadius(const Eigen::Vector3d& axis, double sin_theta, double limit) const;
 

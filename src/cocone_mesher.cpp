@@ -1460,8 +1460,8 @@ Mesher::removeCrossings()
       suspects.push_back(t);
   }
 
-  // The Delaunay neighbours of every corner, looked up once each (the lookup walks the
-  // triangulation, which allows no concurrent walks).
+  // The Delaunay neighbours of every corner, looked up once each rather than once per
+  // suspect triangle at it.
   std::vector<SampleIndex> corners;
   for (const std::uint32_t t : suspects)
     corners.insert(corners.end(), oriented_[t].begin(), oriented_[t].end());

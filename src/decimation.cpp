@@ -120,12 +120,7 @@ VoronoiCocone::decimate(double rho,
                             const SampleIndex s = candidates[k];
                             const VertexHandle v = d.vertex_of[s];
                             std::vector<SampleIndex>& list = adjacency[s];
-                            for (const CellHandle& c : gatherer.gather(v))
-                              for (int j = 0; j < 4; ++j) {
-                                const VertexHandle w = c->vertex(j);
-                                if (w != v && !d.dt.is_infinite(w))
-                                  list.push_back(w->info());
-                              }
+                            gatherer.appendNeighbours(d.dt, v, list);
                             compact(list, s, alive);
                           }
                         });

@@ -103,6 +103,11 @@ public:
   const std::vector<CellHandle>&
   gather(VertexHandle v);
 
+  /** Appends the sample indices of the finite Delaunay neighbours of \a v to \a out,
+   * each once per cell they share with v (unsorted, with repeats). */
+  void
+  appendNeighbours(const Delaunay& dt, VertexHandle v, std::vector<SampleIndex>& out);
+
 private:
   std::vector<CellHandle> cells_;
 };

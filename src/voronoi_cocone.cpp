@@ -65,6 +65,17 @@ StarGatherer::gather(VertexHandle v)
   return cells_;
 }
 
+void
+StarGatherer::appendNeighbours(const Delaunay& dt, VertexHandle v, std::vector<SampleIndex>& out)
+{
+  for (const CellHandle& c : gather(v))
+    for (int j = 0; j < 4; ++j) {
+      const VertexHandle w = c->vertex(j);
+      if (w != v && !dt.is_infinite(w))
+        out.push_back(w->info());
+    }
+}
+
 // ---------------------------------------------------------------------------------
 namespace {
 
@@ -408,11 +419,12 @@ VoronoiCocone::delaunayNeighbours(SampleIndex i, std::vector<SampleIndex>& neigh
                              : impl_->vertex_of[impl_->representative[i]];
   if (v == VertexHandle())
     return;
-  std::vector<VertexHandle> adjacent;
-  impl_->dt.finite_adjacent_vertices(v, std::back_inserter(adjacent));
-  for (const VertexHandle& w : adjacent)
-    neighbours.push_back(w->info());
+  // Not CGAL's finite_adjacent_vertices, which marks cells in place: this one may run
+  // on several threads, and allocates nothing after a thread's first calls.
+  thread_local StarGatherer gatherer;
+  gatherer.appendNeighbours(impl_->dt, v, neighbours);
   std::sort(neighbours.begin(), neighbours.end());
+  neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
 }
 
 void

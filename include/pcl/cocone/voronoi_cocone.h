@@ -344,7 +344,8 @@ public:
   void
   coconeNeighbours(SampleIndex i, std::vector<SampleIndex>& neighbours) const;
 
-  /** \brief The samples sharing a finite Delaunay edge with sample i.
+  /** \brief The samples sharing a finite Delaunay edge with sample i. Safe to call
+   * from several threads at once.
    * \param[in] i a sample index, < size() (a duplicate reads its representative's)
    * \param[out] neighbours representative sample indices, sorted (cleared first); empty
    *             before compute() and after decimate() */
