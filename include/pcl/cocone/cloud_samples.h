@@ -27,13 +27,16 @@ namespace cocone {
  *             VoronoiCocone::compute (cleared first)
  * \param[out] cloud_index for each sample (same size as \a samples), its input cloud
  *             index: maps sample indices back to input cloud indices (cleared first)
+ * \param[out] skipped_indices if given, the input cloud indices of the skipped points,
+ *             in the order of \a indices (appended to)
  * \return the number of points skipped because a coordinate is NaN or infinite */
 template <typename PointT>
 std::size_t
 gatherFiniteSamples(const pcl::PointCloud<PointT>& cloud,
                     const pcl::Indices& indices,
                     std::vector<Eigen::Vector3d>& samples,
-                    pcl::Indices& cloud_index)
+                    pcl::Indices& cloud_index,
+                    pcl::Indices* skipped_indices = nullptr)
 {
   samples.clear();
   cloud_index.clear();
@@ -44,6 +47,8 @@ gatherFiniteSamples(const pcl::PointCloud<PointT>& cloud,
     const PointT& point = cloud[i];
     if (!pcl::isXYZFinite(point)) {
       ++skipped;
+      if (skipped_indices)
+        skipped_indices->push_back(i);
       continue;
     }
     samples.emplace_back(point.x, point.y, point.z);

@@ -66,10 +66,7 @@ CoconeReconstruction<PointInT>::performReconstruction(std::vector<pcl::Vertices>
 
   std::vector<Eigen::Vector3d> samples;
   pcl::Indices cloud_index;
-  cocone::gatherFiniteSamples(*input_, *indices_, samples, cloud_index);
-  for (const pcl::index_t i : *indices_)
-    if (!pcl::isXYZFinite((*input_)[i]))
-      unused_indices_.push_back(i);
+  cocone::gatherFiniteSamples(*input_, *indices_, samples, cloud_index, &unused_indices_);
 
   cocone::VoronoiCocone voronoi;
   voronoi.setCoconeAngle(cocone_angle_);
