@@ -1591,7 +1591,12 @@ Mesher::run(std::vector<TriangleIndices>& output)
   report_ = ReconstructionReport();
   ReconstructionReport::Timings& timings = report_.timings;
   if (parameters_.detect_boundary) {
-    detectBoundarySamples(voronoi_, parameters_.boundary, report_.boundary_samples);
+    // The paper's flags: the completed rim row and the band describe the rim for users,
+    // but whether a sample votes is the paper's decision, which its analysis rests on.
+    BoundaryParameters as_published = parameters_.boundary;
+    as_published.band_rings = 0;
+    as_published.complete_rim_row = false;
+    detectBoundarySamples(voronoi_, as_published, report_.boundary_samples);
     // Boundary samples cast no vote: when they are the majority, too few triangles are
     // chosen to cover the surface (Power Crust's 1281-point knot: 98% flagged, 11% of
     // the samples used). Say so, with the way out, rather than return a scrap silently.

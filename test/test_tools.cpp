@@ -275,7 +275,9 @@ loadTriangles(const fs::path& file, std::size_t n)
 TEST_F(Tools, HelpListsEveryOptionWithDefaultAndRange)
 {
   const std::vector<std::pair<std::string, Args>> options{
-      {kBoundary, {"-rho", "-alpha", "-theta", "-band", "-rgb", "-threads", "-v"}},
+      {kBoundary,
+       {"-rho", "-alpha", "-theta", "-band", "-no_rim_completion", "-rgb", "-threads",
+        "-v"}},
       {kReconstruction,
        {"-theta", "-rho", "-alpha", "-boundary_ratio", "-no_boundary", "-no_stitch",
         "-threads", "-v"}},
@@ -379,6 +381,13 @@ TEST_F(Tools, BoundaryBandFlagsMoreSamples)
                                 "2", "-rho", "0.99", "-alpha", "0.5", "-theta", "0.4",
                                 "-threads", "1"}));
   EXPECT_GT(flagged(loadCloud(band)), flagged(loadCloud(plain)));
+
+  // BOUNDARY as published flags part of the rim row; the default completes it.
+  const fs::path published = path("as_published.pcd");
+  expectSuccess(run(kBoundary, {path("hemisphere.xyz").string(), published.string(),
+                                "-no_rim_completion"}));
+  EXPECT_GT(flagged(loadCloud(published)), 0u);
+  EXPECT_LT(flagged(loadCloud(published)), flagged(loadCloud(plain)));
 }
 
 TEST_F(Tools, BoundaryKeepsNanRowsUnflagged)

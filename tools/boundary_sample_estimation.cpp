@@ -39,6 +39,9 @@ commandLine()
         "also flag K rings of cocone neighbours around the boundary samples, for a "
         "band like pcl::BoundaryEstimation's; 0 is BOUNDARY as published",
         0, "", pcl::cocone::kBandRingsRange},
+       flagOption("-no_rim_completion",
+        "flag only what BOUNDARY as published flags: about half of the outermost row "
+        "along a rim (by default the row is completed from those flags)"),
        flagOption("-rgb",
         "also write an rgb field: red for boundary samples, grey for the others, so "
         "that pcl_viewer shows them as in the paper's figure 4"),
@@ -55,13 +58,16 @@ compute(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLine& 
   estimation.setNormalAngle(cmd.value("-alpha"));
   estimation.setCoconeAngle(cmd.value("-theta"));
   estimation.setBoundaryBandRings(cmd.count("-band"));
+  estimation.setRimRowCompletion(!cmd.flag("-no_rim_completion"));
   estimation.setNumberOfThreads(cmd.count("-threads"));
   if (cmd.verbose())
     printDetail("Parameters",
                 "rho " + formatNumber(estimation.getRatioBound()) + ", alpha " +
                     formatNumber(estimation.getNormalAngle()) + " rad, theta " +
-                    formatNumber(estimation.getCoconeAngle()) + " rad, band " +
-                    std::to_string(estimation.getBoundaryBandRings()) + " rings");
+                    formatNumber(estimation.getCoconeAngle()) + " rad, rim row " +
+                    (estimation.getRimRowCompletion() ? "completed" : "as published") +
+                    ", band " + std::to_string(estimation.getBoundaryBandRings()) +
+                    " rings");
 
   pcl::PointCloud<pcl::Boundary> flags;
   computeStage("boundary samples", "boundary samples",

@@ -29,7 +29,8 @@ namespace pcl {
  * that are thin and agree; every sample not reached is a boundary sample. On a smooth
  * open surface the flags mark the outermost row of samples along the rim (the rim
  * vertices of a correct reconstruction); they also mark samples along sharp edges and
- * in thin, undersampled parts.
+ * in thin, undersampled parts. By default the rim row is completed beyond the paper
+ * (see setRimRowCompletion): BOUNDARY alone flags about half of it.
  *
  * Unlike pcl::BoundaryEstimation it needs no normals, no search radius and no k: the
  * one Delaunay triangulation of the cloud defines every neighbourhood. Output is
@@ -67,8 +68,8 @@ public:
   /** \brief The output cloud type: a pcl::PointCloud of \a PointOutT. */
   using PointCloudOut = typename Feature<PointInT, PointOutT>::PointCloudOut;
 
-  /** \brief Default parameters: rho 0.99, alpha pi/6, theta pi/8, no band, automatic
-   * threads. */
+  /** \brief Default parameters: rho 0.99, alpha pi/6, theta pi/8, rim row completed,
+   * no band, automatic threads. */
   BoundarySampleEstimation() { Feature<PointInT, PointOutT>::feature_name_ = "BoundarySampleEstimation"; }
 
   /** \brief Set rho, the ratio bound of the flatness test r_p / h_p <= rho.
@@ -126,6 +127,27 @@ public:
   getBoundaryBandRings() const
   {
     return parameters_.band_rings;
+  }
+
+  /** \brief Beyond the paper: complete the outermost row of samples along each rim.
+   * BOUNDARY as published flags only 40-65% of that row: a rim sample whose Voronoi
+   * cell is closed off just beyond the rim by its neighbours' cells passes the flatness
+   * test. With completion on, every sample reached from a flag along cocone neighbours
+   * whose nearby cocone neighbours leave a gap wider than 2 pi / 3 in its tangent plane
+   * is flagged too (and the walk goes on from it). Default true; false gives BOUNDARY
+   * exactly as published.
+   * \param[in] complete true to complete the rim row */
+  void
+  setRimRowCompletion(bool complete)
+  {
+    parameters_.complete_rim_row = complete;
+  }
+  /** \brief Get whether the rim row is completed (see setRimRowCompletion).
+   * \return true (default) when the rim row is completed */
+  bool
+  getRimRowCompletion() const
+  {
+    return parameters_.complete_rim_row;
   }
 
   /** \brief Number of threads for the per-sample work; 0 (default) uses every core.

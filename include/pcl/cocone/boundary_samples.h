@@ -16,7 +16,9 @@
 namespace pcl {
 namespace cocone {
 
-/** \brief Parameters of BOUNDARY. Defaults are the paper's practical values. */
+/** \brief Parameters of BOUNDARY. rho and alpha default to the paper's practical
+ * values; of the two extensions beyond the paper, the rim-row completion is on and the
+ * band is off by default. */
 struct BoundaryParameters
 {
   /** \brief rho: a sample is flat only if r_p / h_p <= rho. Dimensionless; default
@@ -32,6 +34,15 @@ struct BoundaryParameters
    * In rings; default 0 (BOUNDARY as published); valid range 0 to 64
    * (kBandRingsRange). */
   unsigned band_rings = 0;
+  /** \brief Beyond the paper: complete the outermost row along a rim. BOUNDARY as
+   * published flags 40-65% of that row (a rim sample whose cell is closed off just
+   * beyond the rim by its neighbours' cells passes the ratio test). With this on,
+   * starting from BOUNDARY's flags and walking along cocone neighbours, every sample
+   * whose nearby cocone neighbours leave a gap wider than 2 pi / 3 in its tangent
+   * plane is flagged as well. Grown only from flags, it adds no flag to a shape that
+   * has none. Default true; false gives BOUNDARY as published. Either value is
+   * valid. */
+  bool complete_rim_row = true;
 };
 
 /** \brief Checks BOUNDARY's parameters against their ranges (parameters.h).
@@ -42,7 +53,8 @@ isValid(const BoundaryParameters& parameters);
 
 /** \brief Runs BOUNDARY: the flat samples (ratio and normal conditions), grown through
  * cocone neighbours that satisfy the ratio condition and agree in pole line; every
- * other sample is a boundary sample.
+ * other sample is a boundary sample. Then, as \a parameters ask, completes the rim
+ * row and adds the band.
  * \param[in] voronoi a VoronoiCocone on which compute() succeeded and decimate() has
  *            not run (decimate() clears the marked triangles BOUNDARY needs)
  * \param[in] parameters see BoundaryParameters (assumed valid: see isValid)

@@ -23,7 +23,8 @@ namespace cocone {
 struct ReconstructionParameters
 {
   /** BOUNDARY's parameters (rho, alpha; see BoundaryParameters for units, defaults
-   * and ranges); band_rings is ignored here. */
+   * and ranges); band_rings and complete_rim_row are ignored here: the samples that
+   * cast no vote are BOUNDARY's as published. */
   BoundaryParameters boundary;
   /** Detect boundary samples and let them cast no vote. Default true; false gives the
    * original COCONE candidate rule (a triangle needs the marks of all its vertices).

@@ -178,7 +178,9 @@ public:
    * A reconstruct() that initCompute() refuses (e.g. no input) leaves them as
    * they were. */
   /** \{ */
-  /** \brief Boundary-sample flags of BOUNDARY.
+  /** \brief Boundary-sample flags of BOUNDARY as published: the samples that cast no
+   * vote (BoundarySampleEstimation completes the rim row by default, so it may flag
+   * more).
    * \return one flag per input cloud point (indexed by input cloud index, size of the
    *         input cloud): 1 for a boundary sample, 0 otherwise and for points that did
    *         not take part (not selected, not finite, or no Voronoi diagram); all 0 when
