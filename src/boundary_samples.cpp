@@ -2,6 +2,11 @@
 #include <pcl/cocone/boundary_samples.h>
 #include <pcl/cocone/parameters.h>
 
+#include "parallel.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -144,42 +149,59 @@ detectBoundarySamples(const VoronoiCocone& voronoi,
     return std::abs(voronoi.poleVector(p).dot(voronoi.poleVector(q))) >= cos_alpha;
   };
 
-  std::vector<std::uint8_t> thin(n, 0); // ratio condition
-  for (std::size_t i = 0; i < n; ++i)
-    thin[i] = voronoi.representative(static_cast<SampleIndex>(i)) == i &&
-              voronoi.ratio(static_cast<SampleIndex>(i)) <= parameters.ratio_bound;
-
-  // Normal condition: every q whose cocone meets V_p (p in N_q) agrees with p.
-  std::vector<std::uint8_t> disagrees(n, 0);
-  for (const MarkedTriangle& triangle : voronoi.markedTriangles())
-    for (int k = 0; k < 3; ++k) {
-      if (!triangle.isMarkedBy(k))
-        continue;
-      const SampleIndex q = triangle.vertex[k];
-      for (int m = 0; m < 3; ++m)
-        if (m != k && !agree(triangle.vertex[m], q))
-          disagrees[triangle.vertex[m]] = 1;
+  // Both conditions per sample, in parallel. The normal condition: every q whose cocone
+  // meets V_p (p in N_q: a triangle at p that q marks) agrees with p.
+  std::vector<std::uint8_t> thin(n, 0), disagrees(n, 0);
+  const auto forEachMarker = [&](SampleIndex p, auto&& visit) {
+    for (const std::uint32_t t : voronoi.trianglesAround(p)) {
+      const MarkedTriangle& triangle = voronoi.markedTriangles()[t];
+      for (int k = 0; k < 3; ++k)
+        if (triangle.vertex[k] != p && triangle.isMarkedBy(k))
+          visit(triangle.vertex[k]);
     }
+  };
+  detail::runInArena(voronoi.getNumberOfThreads(), [&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const auto& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+        const auto p = static_cast<SampleIndex>(i);
+        if (voronoi.representative(p) != p)
+          continue;
+        thin[i] = voronoi.ratio(p) <= parameters.ratio_bound;
+        forEachMarker(p, [&](SampleIndex q) { disagrees[i] |= !agree(p, q); });
+      }
+    });
+  });
 
   // R: the flat samples, grown through cocone neighbours (p in N_q, q in R) that are
-  // thin and agree with q. A reachability closure: the traversal order does not matter.
-  std::vector<std::uint8_t> interior(n, 0);
+  // thin and agree with q: the least set closed under that rule. Only thin samples
+  // that disagree can join, so the closure is computed from their side (a few
+  // percent of the samples on a scan) instead of from every flat sample.
+  std::vector<std::uint8_t> interior(n, 0), queued(n, 0);
   std::vector<SampleIndex> queue;
-  for (std::size_t i = 0; i < n; ++i)
-    if (thin[i] && !disagrees[i]) {
-      interior[i] = 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    interior[i] = thin[i] && !disagrees[i];
+    if (thin[i] && disagrees[i]) {
       queue.push_back(static_cast<SampleIndex>(i));
+      queued[i] = 1;
     }
+  }
   std::vector<SampleIndex> neighbours;
-  for (std::size_t head = 0; head < queue.size(); ++head) {
-    const SampleIndex q = queue[head];
-    voronoi.coconeNeighbours(q, neighbours);
-    for (const SampleIndex p : neighbours) {
-      if (interior[p] || !thin[p] || !agree(p, q))
-        continue;
-      interior[p] = 1;
-      queue.push_back(p);
-    }
+  while (!queue.empty()) {
+    const SampleIndex p = queue.back();
+    queue.pop_back();
+    queued[p] = 0;
+    bool joins = false;
+    forEachMarker(p, [&](SampleIndex q) { joins = joins || (interior[q] && agree(p, q)); });
+    if (!joins)
+      continue;
+    interior[p] = 1;
+    // p now lets the thin samples of N_p join: look at them again.
+    voronoi.coconeNeighbours(p, neighbours);
+    for (const SampleIndex r : neighbours)
+      if (thin[r] && !interior[r] && !queued[r]) {
+        queued[r] = 1;
+        queue.push_back(r);
+      }
   }
 
   for (std::size_t i = 0; i < n; ++i) {
