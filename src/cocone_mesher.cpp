@@ -121,7 +121,7 @@ private:
   template <typename F> void forEachAround(SampleIndex v, F&& f) const
   {
     for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1]; ++k)
-      f(ids_[k]);
+      f(incidence_[k].triangle);
     if (!late_.empty()) {
       const auto late = late_.find(v);
       if (late != late_.end())
@@ -135,10 +135,20 @@ private:
                        std::vector<std::uint32_t>& out) const
   {
     out.clear();
-    forEachAround(a, [&](std::uint32_t t) {
-      if (contains(t, b) && keep(t))
-        out.push_back(t);
-    });
+    // The other two vertices are stored beside each triangle id: no look-up of the
+    // triangle itself for the many that do not contain b.
+    for (std::uint32_t k = offsets_[a]; k < offsets_[a + 1]; ++k) {
+      const Incidence& at = incidence_[k];
+      if ((at.other[0] == b || at.other[1] == b) && keep(at.triangle))
+        out.push_back(at.triangle);
+    }
+    if (!late_.empty()) {
+      const auto late = late_.find(a);
+      if (late != late_.end())
+        for (const std::uint32_t t : late->second)
+          if (contains(t, b) && keep(t))
+            out.push_back(t);
+    }
   }
   /** Mesh triangles on edge (a, b). */
   void meshOnEdge(SampleIndex a, SampleIndex b, std::vector<std::uint32_t>& out) const
@@ -226,7 +236,15 @@ private:
   std::vector<std::uint8_t> state_;
   std::vector<std::uint32_t> group_;
   std::vector<TriangleIndices> oriented_; // orientation in the mesh
-  std::vector<std::uint32_t> offsets_, ids_;
+  /** A pool triangle at a vertex, with its two other vertices. */
+  struct Incidence
+  {
+    std::uint32_t triangle;
+    std::array<SampleIndex, 2> other;
+  };
+  // Incidence lists: the triangles at v are incidence_[offsets_[v] .. offsets_[v + 1]).
+  std::vector<std::uint32_t> offsets_;
+  std::vector<Incidence> incidence_;
   std::vector<std::uint32_t> group_start_; // group g spans [start[g], start[g + 1])
 
   // A uniform grid over the mesh triangles' bounding boxes, built on first use by the
@@ -264,11 +282,13 @@ Mesher::rebuildIncidence()
       ++offsets_[v + 1];
   for (std::size_t i = 0; i < n_; ++i)
     offsets_[i + 1] += offsets_[i];
-  ids_.resize(offsets_[n_]);
+  incidence_.resize(offsets_[n_]);
   std::vector<std::uint32_t> fill(offsets_.begin(), offsets_.end() - 1);
-  for (std::uint32_t t = 0; t < pool_.size(); ++t)
-    for (const SampleIndex v : pool_[t])
-      ids_[fill[v]++] = t;
+  for (std::uint32_t t = 0; t < pool_.size(); ++t) {
+    const TriangleIndices& tri = pool_[t];
+    for (int k = 0; k < 3; ++k)
+      incidence_[fill[tri[k]]++] = {t, {tri[(k + 1) % 3], tri[(k + 2) % 3]}};
+  }
 }
 
 // ---------------------------------------------------------------------------------
@@ -740,7 +760,7 @@ Mesher::seedTriangle(std::uint32_t& seed)
     const SampleIndex v = seed_order_[seed_cursor_];
     bool has_free = false;
     for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1] && !has_free; ++k)
-      has_free = is_free(ids_[k]);
+      has_free = is_free(incidence_[k].triangle);
     if (has_free) {
       extreme = v;
       break;
@@ -753,7 +773,7 @@ Mesher::seedTriangle(std::uint32_t& seed)
   double best_alignment = -1;
   bool found = false;
   for (std::uint32_t k = offsets_[extreme]; k < offsets_[extreme + 1]; ++k) {
-    const std::uint32_t t = ids_[k];
+    const std::uint32_t t = incidence_[k].triangle;
     const TriangleIndices& tri = pool_[t];
     if (!is_free(t))
       continue;
@@ -765,7 +785,7 @@ Mesher::seedTriangle(std::uint32_t& seed)
       normal = -normal;
     std::size_t violations = 0;
     for (std::uint32_t m = offsets_[extreme]; m < offsets_[extreme + 1]; ++m) {
-      const std::uint32_t s = ids_[m];
+      const std::uint32_t s = incidence_[m].triangle;
       if (s == t || state_[s] != kCandidate || group_[s] != kCoconeGroup)
         continue;
       for (const SampleIndex v : pool_[s])
