@@ -202,7 +202,8 @@ private:
                         std::vector<std::uint32_t>& label) const;
   std::size_t countFans(SampleIndex v) const;
   std::size_t prune(std::uint32_t group);
-  bool mustPrune(std::uint32_t t);
+  bool mustPrune(std::uint32_t t, std::vector<std::uint32_t>& on_edge,
+                 std::vector<double>& angles) const;
   void walkAll();
   struct Step
   {
@@ -461,7 +462,8 @@ Mesher::removeLids()
 // or more triangles still go; the gaps are closed by stitching. Triangles incident to a
 // boundary sample are never pruned, as in the paper.
 bool
-Mesher::mustPrune(std::uint32_t t)
+Mesher::mustPrune(std::uint32_t t, std::vector<std::uint32_t>& on_edge,
+                  std::vector<double>& angles) const
 {
   const TriangleIndices& tri = pool_[t];
   const std::uint32_t group = group_[t];
@@ -474,8 +476,8 @@ Mesher::mustPrune(std::uint32_t t)
           return state_[s] == kInMesh ||
                  (state_[s] == kCandidate && group_[s] == group);
         },
-        scratch_);
-    if (scratch_.size() == 1) {
+        on_edge);
+    if (on_edge.size() == 1) {
       bare = true;
       continue;
     }
@@ -485,29 +487,29 @@ Mesher::mustPrune(std::uint32_t t)
       Vector u = points_[apex(s, a, b)] - pa;
       return Vector(u - u.dot(axis) * axis);
     };
-    if (scratch_.size() == 2) {
+    if (on_edge.size() == 2) {
       // Two half-planes fold (the wider gap exceeds 3 pi / 2) when they are less than
       // pi / 2 apart.
-      if (across(scratch_[0]).dot(across(scratch_[1])) > 0)
+      if (across(on_edge[0]).dot(across(on_edge[1])) > 0)
         return true;
       held = true;
       continue;
     }
     // Angles around the edge, from the first triangle's half-plane.
-    const Vector reference = across(scratch_[0]).normalized();
+    const Vector reference = across(on_edge[0]).normalized();
     const Vector normal = axis.cross(reference);
-    angles_.clear();
-    for (const std::uint32_t s : scratch_) {
+    angles.clear();
+    for (const std::uint32_t s : on_edge) {
       const Vector u = across(s);
       double angle = std::atan2(u.dot(normal), u.dot(reference));
       if (angle < 0)
         angle += 2 * M_PI;
-      angles_.push_back(angle);
+      angles.push_back(angle);
     }
-    std::sort(angles_.begin(), angles_.end());
-    double widest = 2 * M_PI - angles_.back() + angles_.front();
-    for (std::size_t i = 1; i < angles_.size(); ++i)
-      widest = std::max(widest, angles_[i] - angles_[i - 1]);
+    std::sort(angles.begin(), angles.end());
+    double widest = 2 * M_PI - angles.back() + angles.front();
+    for (std::size_t i = 1; i < angles.size(); ++i)
+      widest = std::max(widest, angles[i] - angles[i - 1]);
     if (widest > 1.5 * M_PI)
       return true; // a fold
   }
@@ -520,6 +522,11 @@ Mesher::prune(std::uint32_t group)
   const std::vector<std::uint8_t>& boundary = report_.boundary_samples;
   // A group's triangles are contiguous in the pool.
   const std::uint32_t first = group_start_[group], last = group_start_[group + 1];
+  const auto is_protected = [&](std::uint32_t t) {
+    const TriangleIndices& tri = pool_[t];
+    return group == kCoconeGroup &&
+           (boundary[tri[0]] || boundary[tri[1]] || boundary[tri[2]]);
+  };
   std::vector<std::uint32_t> work;
   std::vector<std::uint8_t> queued(last - first, 0);
   for (std::uint32_t t = first; t < last; ++t)
@@ -527,6 +534,24 @@ Mesher::prune(std::uint32_t group)
       work.push_back(t);
       queued[t - first] = 1;
     }
+
+  // The first verdicts, read-only, in parallel (most triangles are judged only once).
+  // A verdict goes stale when a triangle on one of its edges is removed; the cascade
+  // below judges stale ones again, in the same order as a sequential run would.
+  std::vector<std::uint8_t> verdict(last - first, 0), stale(last - first, 0);
+  detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, work.size(), 1024),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        std::vector<std::uint32_t> on_edge;
+                        std::vector<double> angles;
+                        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                          const std::uint32_t t = work[i];
+                          verdict[t - first] =
+                              !is_protected(t) && mustPrune(t, on_edge, angles);
+                        }
+                      });
+  });
+
   std::size_t pruned = 0;
   std::vector<std::uint32_t> neighbours;
   while (!work.empty()) {
@@ -535,14 +560,12 @@ Mesher::prune(std::uint32_t group)
     queued[t - first] = 0;
     if (state_[t] != kCandidate)
       continue;
-    const TriangleIndices& tri = pool_[t];
-    if (group == kCoconeGroup &&
-        (boundary[tri[0]] || boundary[tri[1]] || boundary[tri[2]]))
-      continue; // protected
-    if (!mustPrune(t))
+    if (stale[t - first] ? is_protected(t) || !mustPrune(t, scratch_, angles_)
+                         : !verdict[t - first])
       continue;
     state_[t] = kRejected;
     ++pruned;
+    const TriangleIndices& tri = pool_[t];
     for (int k = 0; k < 3; ++k) {
       trianglesOnEdge(
           tri[k], tri[(k + 1) % 3],
@@ -550,11 +573,13 @@ Mesher::prune(std::uint32_t group)
             return state_[s] == kCandidate && group_[s] == group;
           },
           neighbours);
-      for (const std::uint32_t s : neighbours)
+      for (const std::uint32_t s : neighbours) {
+        stale[s - first] = 1;
         if (!queued[s - first]) {
           queued[s - first] = 1;
           work.push_back(s);
         }
+      }
     }
   }
   return pruned;
