@@ -301,19 +301,25 @@ Mesher::measureSpacing()
 {
   const std::vector<MarkedTriangle>& marked = voronoi_.markedTriangles();
   spacing_.assign(n_, 0);
-  std::vector<double> distances;
-  for (SampleIndex p = 0; p < n_; ++p) {
-    distances.clear();
-    for (const std::uint32_t t : voronoi_.trianglesAround(p))
-      for (const SampleIndex v : marked[t].vertex)
-        if (v != p)
-          distances.push_back((points_[v] - points_[p]).squaredNorm());
-    std::sort(distances.begin(), distances.end());
-    distances.erase(std::unique(distances.begin(), distances.end()), distances.end());
-    if (!distances.empty())
-      spacing_[p] =
-          std::sqrt(distances[std::min<std::size_t>(distances.size(), 3) - 1]);
-  }
+  detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
+    tbb::parallel_for(tbb::blocked_range<SampleIndex>(0, static_cast<SampleIndex>(n_), 1024),
+                      [&](const tbb::blocked_range<SampleIndex>& range) {
+                        std::vector<double> distances;
+                        for (SampleIndex p = range.begin(); p != range.end(); ++p) {
+                          distances.clear();
+                          for (const std::uint32_t t : voronoi_.trianglesAround(p))
+                            for (const SampleIndex v : marked[t].vertex)
+                              if (v != p)
+                                distances.push_back((points_[v] - points_[p]).squaredNorm());
+                          std::sort(distances.begin(), distances.end());
+                          distances.erase(std::unique(distances.begin(), distances.end()),
+                                          distances.end());
+                          if (!distances.empty())
+                            spacing_[p] = std::sqrt(
+                                distances[std::min<std::size_t>(distances.size(), 3) - 1]);
+                        }
+                      });
+  });
 }
 
 double
@@ -363,6 +369,12 @@ void
 Mesher::collectCandidates()
 {
   const std::vector<std::uint8_t>& boundary = report_.boundary_samples;
+  // Nearly every marked triangle of a well sampled surface is a candidate.
+  const std::size_t expected = voronoi_.markedTriangles().size();
+  pool_.reserve(expected);
+  state_.reserve(expected);
+  group_.reserve(expected);
+  oriented_.reserve(expected);
   for (const MarkedTriangle& t : voronoi_.markedTriangles()) {
     int voters = 0;
     bool every_voter_marks = true;
@@ -395,13 +407,19 @@ Mesher::removeLids()
 {
   constexpr double kOversized = 1.25; // circumradius in local spacings
   std::vector<std::uint8_t> oversized(pool_.size(), 0);
-  for (std::uint32_t t = 0; t < pool_.size(); ++t) {
-    const TriangleIndices& tri = pool_[t];
-    const double local =
-        std::max({spacing_[tri[0]], spacing_[tri[1]], spacing_[tri[2]]});
-    oversized[t] = circumradius(points_[tri[0]], points_[tri[1]], points_[tri[2]]) >
-                   kOversized * local;
-  }
+  detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
+    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(
+                          0, static_cast<std::uint32_t>(pool_.size()), 4096),
+                      [&](const tbb::blocked_range<std::uint32_t>& range) {
+                        for (std::uint32_t t = range.begin(); t != range.end(); ++t) {
+                          const TriangleIndices& tri = pool_[t];
+                          const double local = std::max(
+                              {spacing_[tri[0]], spacing_[tri[1]], spacing_[tri[2]]});
+                          oversized[t] = circumradius(points_[tri[0]], points_[tri[1]],
+                                                      points_[tri[2]]) > kOversized * local;
+                        }
+                      });
+  });
   // Boundary samples and the samples sharing a candidate with one.
   const std::vector<std::uint8_t>& boundary = report_.boundary_samples;
   std::vector<std::uint8_t> near_boundary(boundary);
@@ -1585,41 +1603,49 @@ Mesher::removeCrossings()
 void
 Mesher::orientClosedComponentsOutward()
 {
-  std::vector<std::uint32_t> mesh;
+  // Components of the mesh through shared vertices, by union-find over the samples.
+  // Every vertex has a single fan (resolvePinches), so these are the components
+  // through shared edges, found without looking up a single edge.
+  std::vector<SampleIndex> parent(n_);
+  std::iota(parent.begin(), parent.end(), SampleIndex(0));
+  const auto find = [&](SampleIndex v) {
+    while (parent[v] != v)
+      v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  const auto unite = [&](SampleIndex a, SampleIndex b) {
+    a = find(a);
+    b = find(b);
+    if (a != b)
+      parent[std::max(a, b)] = std::min(a, b);
+  };
   for (std::uint32_t t = 0; t < pool_.size(); ++t)
-    if (state_[t] == kInMesh)
-      mesh.push_back(t);
-  std::vector<std::int32_t> component(pool_.size(), -1);
-  std::vector<std::uint32_t> stack, on_edge;
-  for (const std::uint32_t start : mesh) {
-    if (component[start] >= 0)
-      continue;
-    std::vector<std::uint32_t> members;
-    bool closed = true;
-    double volume = 0;
-    stack = {start};
-    component[start] = 1;
-    while (!stack.empty()) {
-      const std::uint32_t t = stack.back();
-      stack.pop_back();
-      members.push_back(t);
-      const TriangleIndices& o = oriented_[t];
-      volume += points_[o[0]].dot(points_[o[1]].cross(points_[o[2]]));
-      for (int k = 0; k < 3; ++k) {
-        meshOnEdge(o[k], o[(k + 1) % 3], on_edge);
-        if (on_edge.size() != 2)
-          closed = false;
-        for (const std::uint32_t s : on_edge)
-          if (component[s] < 0) {
-            component[s] = 1;
-            stack.push_back(s);
-          }
-      }
+    if (state_[t] == kInMesh) {
+      unite(oriented_[t][0], oriented_[t][1]);
+      unite(oriented_[t][0], oriented_[t][2]);
     }
-    if (closed && volume < 0)
-      for (const std::uint32_t t : members)
-        std::swap(oriented_[t][1], oriented_[t][2]);
+  // Signed volume per component (divergence theorem, up to a factor 6), summed in
+  // triangle order.
+  std::vector<double> volume(n_, 0);
+  for (std::uint32_t t = 0; t < pool_.size(); ++t)
+    if (state_[t] == kInMesh) {
+      const TriangleIndices& o = oriented_[t];
+      volume[find(o[0])] += points_[o[0]].dot(points_[o[1]].cross(points_[o[2]]));
+    }
+  // A component with a boundary edge is open: its inside is undefined.
+  std::vector<std::uint8_t> open(n_, 0);
+  std::vector<std::uint32_t> on_edge;
+  for (const auto& [a, b] : maybe_open_) {
+    meshOnEdge(a, b, on_edge);
+    if (on_edge.size() == 1)
+      open[find(a)] = 1;
   }
+  for (std::uint32_t t = 0; t < pool_.size(); ++t)
+    if (state_[t] == kInMesh) {
+      const SampleIndex root = find(oriented_[t][0]);
+      if (!open[root] && volume[root] < 0)
+        std::swap(oriented_[t][1], oriented_[t][2]);
+    }
 }
 
 void
