@@ -13,6 +13,7 @@
 #include <cmath>
 #include <new>
 #include <sstream>
+#include <utility>
 
 namespace pcl {
 namespace cocone {
@@ -486,18 +487,27 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
   Delaunay& dt = d.dt;
   const std::size_t n = d.representative.size();
 
-  // Number the finite cells; compute each circumcenter once, before any concurrent read.
-  std::vector<CellHandle> cells;
-  cells.reserve(dt.number_of_finite_cells());
-  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
-    c->cellIndex() = static_cast<std::uint32_t>(cells.size());
-    cells.push_back(c);
+  // Number the finite cells, in container order; the infinite ones follow them in
+  // all_cells. One pass: touching every cell is what costs at a million points.
+  std::vector<CellHandle> all_cells, infinite_cells;
+  all_cells.reserve(dt.number_of_cells());
+  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
+    if (dt.is_infinite(c)) {
+      infinite_cells.push_back(c);
+      continue;
+    }
+    c->cellIndex() = static_cast<std::uint32_t>(all_cells.size());
+    all_cells.push_back(c);
   }
-  std::vector<Eigen::Vector3d> centers(cells.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 4096),
+  const std::size_t finite_cells = all_cells.size();
+  all_cells.insert(all_cells.end(), infinite_cells.begin(), infinite_cells.end());
+
+  // Each circumcenter once, before any concurrent read.
+  std::vector<Eigen::Vector3d> centers(finite_cells);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, finite_cells, 4096),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t k = range.begin(); k != range.end(); ++k)
-                        centers[k] = circumcenter(cells[k]);
+                        centers[k] = circumcenter(all_cells[k]);
                     });
 
   std::vector<VertexHandle> vertices;
@@ -508,25 +518,50 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
   // The star of every vertex at once (cells by sample, infinite cells after the
   // finite ones): one pass over the cells instead of a search per vertex, which
   // measured twice as slow.
-  std::vector<CellHandle> all_cells(cells);
-  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c)
-    if (dt.is_infinite(c))
-      all_cells.push_back(c);
+  // The samples of every cell (kNoSample for the infinite vertex), read once in
+  // parallel: the passes below then scan a flat array instead of chasing handles.
+  std::vector<std::array<SampleIndex, 4>> cell_samples(all_cells.size());
+  const VertexHandle infinite = dt.infinite_vertex();
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, all_cells.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t k = range.begin(); k != range.end(); ++k)
+                        for (int j = 0; j < 4; ++j) {
+                          const VertexHandle v = all_cells[k]->vertex(j);
+                          cell_samples[k][j] = v == infinite ? kNoSample : v->info();
+                        }
+                    });
+  // Star lists in cell order, filled by a few blocks of cells at once: each block
+  // counts its cells per sample, so it knows where in each list its own cells go.
+  constexpr std::size_t kBlocks = 4;
+  const std::size_t block_size = (cell_samples.size() + kBlocks - 1) / kBlocks;
+  const auto blockRange = [&](std::size_t b) {
+    return std::make_pair(std::min(b * block_size, cell_samples.size()),
+                          std::min((b + 1) * block_size, cell_samples.size()));
+  };
+  std::vector<std::vector<std::uint32_t>> cursor(kBlocks);
+  tbb::parallel_for(std::size_t(0), kBlocks, [&](std::size_t b) {
+    cursor[b].assign(n, 0);
+    const auto [first, last] = blockRange(b);
+    for (std::size_t k = first; k < last; ++k)
+      for (const SampleIndex s : cell_samples[k])
+        if (s != kNoSample)
+          ++cursor[b][s];
+  });
   std::vector<std::uint32_t> star_offsets(n + 1, 0);
-  for (const CellHandle& c : all_cells)
-    for (int j = 0; j < 4; ++j)
-      if (!dt.is_infinite(c->vertex(j)))
-        ++star_offsets[c->vertex(j)->info() + 1];
-  for (std::size_t i = 0; i < n; ++i)
-    star_offsets[i + 1] += star_offsets[i];
-  std::vector<std::uint32_t> star_cells(star_offsets[n]);
-  {
-    std::vector<std::uint32_t> fill(star_offsets.begin(), star_offsets.end() - 1);
-    for (std::uint32_t k = 0; k < all_cells.size(); ++k)
-      for (int j = 0; j < 4; ++j)
-        if (!dt.is_infinite(all_cells[k]->vertex(j)))
-          star_cells[fill[all_cells[k]->vertex(j)->info()]++] = k;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint32_t at = star_offsets[i];
+    for (std::size_t b = 0; b < kBlocks; ++b) // counts -> where block b starts
+      at += std::exchange(cursor[b][i], at);
+    star_offsets[i + 1] = at;
   }
+  std::vector<std::uint32_t> star_cells(star_offsets[n]);
+  tbb::parallel_for(std::size_t(0), kBlocks, [&](std::size_t b) {
+    const auto [first, last] = blockRange(b);
+    for (std::size_t k = first; k < last; ++k)
+      for (const SampleIndex s : cell_samples[k])
+        if (s != kNoSample)
+          star_cells[cursor[b][s]++] = static_cast<std::uint32_t>(k);
+  });
 
   d.pole_vector.assign(n, Eigen::Vector3d::Zero());
   d.positive_pole.assign(n, Eigen::Vector3d::Zero());
@@ -537,7 +572,7 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
 
   // marks[c][j] bit i: vertex j of cell c marks facet i of c. Only the thread handling
   // vertex j writes that byte, so no synchronisation is needed.
-  std::vector<std::array<std::uint8_t, 4>> marks(cells.size(), {0, 0, 0, 0});
+  std::vector<std::array<std::uint8_t, 4>> marks(finite_cells, {0, 0, 0, 0});
   tbb::enumerable_thread_specific<std::vector<CellHandle>> stars;
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, vertices.size(), 512),
@@ -567,24 +602,39 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
 
   // Collect the marked triangles, each from the cell that owns its facet (the same
   // rule computeCoconeRadius uses), in cell order: deterministic.
-  d.triangles.clear();
-  for (std::size_t k = 0; k < cells.size(); ++k) {
-    const CellHandle c = cells[k];
-    for (int i = 0; i < 4; ++i) {
-      const CellHandle nb = c->neighbor(i);
-      if (!dt.is_infinite(nb) && nb->cellIndex() < c->cellIndex())
-        continue;
-      MarkedTriangle triangle;
-      triangle.marked_by = 0;
-      for (int m = 0; m < 3; ++m) {
-        const int j = (i + 1 + m) & 3;
-        triangle.vertex[m] = c->vertex(j)->info();
-        if ((marks[k][j] >> i) & 1u)
-          triangle.marked_by |= static_cast<std::uint8_t>(1u << m);
+  // Most facets are marked by none of their vertices: those are skipped on the marks
+  // alone, without reading the neighbouring cell. Blocks of cells in parallel, joined
+  // in cell order.
+  std::vector<std::vector<MarkedTriangle>> found(kBlocks);
+  tbb::parallel_for(std::size_t(0), kBlocks, [&](std::size_t b) {
+    const std::size_t first = std::min(b * block_size, finite_cells);
+    const std::size_t last = std::min((b + 1) * block_size, finite_cells);
+    for (std::size_t k = first; k < last; ++k)
+      for (int i = 0; i < 4; ++i) {
+        MarkedTriangle triangle;
+        triangle.marked_by = 0;
+        for (int m = 0; m < 3; ++m) {
+          const int j = (i + 1 + m) & 3;
+          triangle.vertex[m] = cell_samples[k][j];
+          if ((marks[k][j] >> i) & 1u)
+            triangle.marked_by |= static_cast<std::uint8_t>(1u << m);
+        }
+        if (triangle.marked_by == 0)
+          continue;
+        const CellHandle nb = all_cells[k]->neighbor(i);
+        if (!dt.is_infinite(nb) && nb->cellIndex() < k)
+          continue;
+        found[b].push_back(triangle);
       }
-      if (triangle.marked_by != 0)
-        d.triangles.push_back(triangle);
-    }
+  });
+  d.triangles.clear();
+  std::size_t total = 0;
+  for (const std::vector<MarkedTriangle>& block : found)
+    total += block.size();
+  d.triangles.reserve(total);
+  for (std::vector<MarkedTriangle>& block : found) {
+    d.triangles.insert(d.triangles.end(), block.begin(), block.end());
+    std::vector<MarkedTriangle>().swap(block);
   }
 
   // Incidence lists (CSR by sample).
