@@ -556,19 +556,22 @@ Mesher::prune(std::uint32_t group)
   // The first verdicts, read-only, in parallel (most triangles are judged only once).
   // A verdict goes stale when a triangle on one of its edges is removed; the cascade
   // below judges stale ones again, in the same order as a sequential run would.
-  std::vector<std::uint8_t> verdict(last - first, 0), stale(last - first, 0);
-  detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, work.size(), 1024),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        std::vector<std::uint32_t> on_edge;
-                        std::vector<double> angles;
-                        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                          const std::uint32_t t = work[i];
-                          verdict[t - first] =
-                              !is_protected(t) && mustPrune(t, on_edge, angles);
-                        }
-                      });
-  });
+  // A hole's group is small: judged in the cascade alone, it costs no parallel set-up.
+  constexpr std::size_t kParallelVerdicts = 4096;
+  const bool parallel = last - first >= kParallelVerdicts;
+  std::vector<std::uint8_t> verdict(last - first, 0), stale(last - first, parallel ? 0 : 1);
+  const auto judge = [&](const tbb::blocked_range<std::size_t>& range) {
+    std::vector<std::uint32_t> on_edge;
+    std::vector<double> angles;
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      const std::uint32_t t = work[i];
+      verdict[t - first] = !is_protected(t) && mustPrune(t, on_edge, angles);
+    }
+  };
+  if (parallel)
+    detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, work.size(), 1024), judge);
+    });
 
   std::size_t pruned = 0;
   std::vector<std::uint32_t> neighbours;
