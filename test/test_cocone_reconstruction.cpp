@@ -151,6 +151,37 @@ TEST(CoconeReconstruction, KnotHasExactly20000Triangles)
 
 // Stitching and boundary detection can be switched off; on a closed smooth surface the
 // plain COCONE is enough, and on an open one boundary detection is what keeps the rim.
+/** Every parallel stage (spatial sort, star lists, triangle collection, BOUNDARY's
+ * conditions, spacing, lids, pruning verdicts, crossing search) keeps the order of the
+ * sequential run: one thread and all threads give the same triangles in the same order,
+ * the same boundary flags and the same report. The cube has sharp edges (boundary
+ * samples, pruning protection) and holes along them (stitching, crossing removal); its
+ * cocone group is large enough for the parallel pruning verdicts. */
+TEST(CoconeReconstruction, OneThreadAndAllThreadsGiveTheSameMesh)
+{
+  const auto cloud = toCloud(sampleCube(20000, 5).points);
+  const auto run = [&](unsigned threads, std::vector<pcl::Vertices>& polygons,
+                       std::vector<std::uint8_t>& flags, std::size_t& stitched) {
+    pcl::CoconeReconstruction<pcl::PointXYZ> cocone;
+    cocone.setInputCloud(cloud);
+    cocone.setNumberOfThreads(threads);
+    cocone.reconstruct(polygons);
+    flags = cocone.getBoundarySamples();
+    stitched = cocone.getNumberOfStitchedTriangles();
+  };
+  std::vector<pcl::Vertices> one, all;
+  std::vector<std::uint8_t> one_flags, all_flags;
+  std::size_t one_stitched = 0, all_stitched = 0;
+  run(1, one, one_flags, one_stitched);
+  run(0, all, all_flags, all_stitched);
+  std::cout << "[ measured ] cube 20000: " << one.size() << " triangles, "
+            << one_stitched << " stitched" << std::endl;
+  ASSERT_GT(one.size(), 39000u);
+  EXPECT_EQ(toTriangles(one), toTriangles(all));
+  EXPECT_EQ(one_flags, all_flags);
+  EXPECT_EQ(one_stitched, all_stitched);
+}
+
 TEST(CoconeReconstruction, StagesCanBeSwitchedOff)
 {
   const SampledShape sphere = sampleSphere(3000, 2);
