@@ -64,10 +64,8 @@ constexpr double kRimGapAngle = 2 * M_PI / 3;
  * measured in p's tangent plane (the plane normal to its pole vector); 2 pi when fewer
  * than two links remain. \a links and \a scratch are reused buffers. */
 double
-largestTangentGap(const VoronoiCocone& voronoi,
-                  SampleIndex p,
-                  std::vector<SampleIndex>& links,
-                  std::vector<double>& scratch)
+largestTangentGap(const VoronoiCocone& voronoi, SampleIndex p,
+                  std::vector<SampleIndex>& links, std::vector<double>& scratch)
 {
   links.clear();
   forEachCoconeLink(voronoi, p, [&](SampleIndex q) { links.push_back(q); });
@@ -80,7 +78,8 @@ largestTangentGap(const VoronoiCocone& voronoi,
     scratch.push_back((points[q] - origin).squaredNorm());
   if (scratch.size() < 2)
     return 2 * M_PI;
-  std::nth_element(scratch.begin(), scratch.begin() + scratch.size() / 2, scratch.end());
+  std::nth_element(scratch.begin(), scratch.begin() + scratch.size() / 2,
+                   scratch.end());
   const double limit = kFarLink * kFarLink * scratch[scratch.size() / 2];
 
   const Eigen::Vector3d& normal = voronoi.poleVector(p);
@@ -119,7 +118,8 @@ completeRimRow(const VoronoiCocone& voronoi, std::vector<std::uint8_t>& is_bound
   std::vector<double> scratch;
   for (std::size_t head = 0; head < queue.size(); ++head) {
     candidates.clear();
-    forEachCoconeLink(voronoi, queue[head], [&](SampleIndex q) { candidates.push_back(q); });
+    forEachCoconeLink(voronoi, queue[head],
+                      [&](SampleIndex q) { candidates.push_back(q); });
     for (const SampleIndex p : candidates) {
       if (tested[p])
         continue;
@@ -191,7 +191,8 @@ detectBoundarySamples(const VoronoiCocone& voronoi,
     queue.pop_back();
     queued[p] = 0;
     bool joins = false;
-    forEachMarker(p, [&](SampleIndex q) { joins = joins || (interior[q] && agree(p, q)); });
+    forEachMarker(
+        p, [&](SampleIndex q) { joins = joins || (interior[q] && agree(p, q)); });
     if (!joins)
       continue;
     interior[p] = 1;

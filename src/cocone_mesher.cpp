@@ -302,23 +302,24 @@ Mesher::measureSpacing()
   const std::vector<MarkedTriangle>& marked = voronoi_.markedTriangles();
   spacing_.assign(n_, 0);
   detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
-    tbb::parallel_for(tbb::blocked_range<SampleIndex>(0, static_cast<SampleIndex>(n_), 1024),
-                      [&](const tbb::blocked_range<SampleIndex>& range) {
-                        std::vector<double> distances;
-                        for (SampleIndex p = range.begin(); p != range.end(); ++p) {
-                          distances.clear();
-                          for (const std::uint32_t t : voronoi_.trianglesAround(p))
-                            for (const SampleIndex v : marked[t].vertex)
-                              if (v != p)
-                                distances.push_back((points_[v] - points_[p]).squaredNorm());
-                          std::sort(distances.begin(), distances.end());
-                          distances.erase(std::unique(distances.begin(), distances.end()),
-                                          distances.end());
-                          if (!distances.empty())
-                            spacing_[p] = std::sqrt(
-                                distances[std::min<std::size_t>(distances.size(), 3) - 1]);
-                        }
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<SampleIndex>(0, static_cast<SampleIndex>(n_), 1024),
+        [&](const tbb::blocked_range<SampleIndex>& range) {
+          std::vector<double> distances;
+          for (SampleIndex p = range.begin(); p != range.end(); ++p) {
+            distances.clear();
+            for (const std::uint32_t t : voronoi_.trianglesAround(p))
+              for (const SampleIndex v : marked[t].vertex)
+                if (v != p)
+                  distances.push_back((points_[v] - points_[p]).squaredNorm());
+            std::sort(distances.begin(), distances.end());
+            distances.erase(std::unique(distances.begin(), distances.end()),
+                            distances.end());
+            if (!distances.empty())
+              spacing_[p] =
+                  std::sqrt(distances[std::min<std::size_t>(distances.size(), 3) - 1]);
+          }
+        });
   });
 }
 
@@ -408,17 +409,18 @@ Mesher::removeLids()
   constexpr double kOversized = 1.25; // circumradius in local spacings
   std::vector<std::uint8_t> oversized(pool_.size(), 0);
   detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
-    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(
-                          0, static_cast<std::uint32_t>(pool_.size()), 4096),
-                      [&](const tbb::blocked_range<std::uint32_t>& range) {
-                        for (std::uint32_t t = range.begin(); t != range.end(); ++t) {
-                          const TriangleIndices& tri = pool_[t];
-                          const double local = std::max(
-                              {spacing_[tri[0]], spacing_[tri[1]], spacing_[tri[2]]});
-                          oversized[t] = circumradius(points_[tri[0]], points_[tri[1]],
-                                                      points_[tri[2]]) > kOversized * local;
-                        }
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<std::uint32_t>(0, static_cast<std::uint32_t>(pool_.size()),
+                                          4096),
+        [&](const tbb::blocked_range<std::uint32_t>& range) {
+          for (std::uint32_t t = range.begin(); t != range.end(); ++t) {
+            const TriangleIndices& tri = pool_[t];
+            const double local =
+                std::max({spacing_[tri[0]], spacing_[tri[1]], spacing_[tri[2]]});
+            oversized[t] = circumradius(points_[tri[0]], points_[tri[1]],
+                                        points_[tri[2]]) > kOversized * local;
+          }
+        });
   });
   // Boundary samples and the samples sharing a candidate with one.
   const std::vector<std::uint8_t>& boundary = report_.boundary_samples;
@@ -559,7 +561,8 @@ Mesher::prune(std::uint32_t group)
   // A hole's group is small: judged in the cascade alone, it costs no parallel set-up.
   constexpr std::size_t kParallelVerdicts = 4096;
   const bool parallel = last - first >= kParallelVerdicts;
-  std::vector<std::uint8_t> verdict(last - first, 0), stale(last - first, parallel ? 0 : 1);
+  std::vector<std::uint8_t> verdict(last - first, 0),
+      stale(last - first, parallel ? 0 : 1);
   const auto judge = [&](const tbb::blocked_range<std::size_t>& range) {
     std::vector<std::uint32_t> on_edge;
     std::vector<double> angles;

@@ -521,7 +521,7 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
   // measured twice as slow.
   // The samples of every cell (kNoSample for the infinite vertex), read once in
   // parallel: the passes below then scan a flat array instead of chasing handles.
-  std::vector<std::array<SampleIndex, 4>> cell_samples(all_cells.size());
+  std::vector<std::array<SampleIndex, 4> > cell_samples(all_cells.size());
   const VertexHandle infinite = dt.infinite_vertex();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, all_cells.size(), 4096),
                     [&](const tbb::blocked_range<std::size_t>& range) {
@@ -539,7 +539,7 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
     return std::make_pair(std::min(b * block_size, cell_samples.size()),
                           std::min((b + 1) * block_size, cell_samples.size()));
   };
-  std::vector<std::vector<std::uint32_t>> cursor(kBlocks);
+  std::vector<std::vector<std::uint32_t> > cursor(kBlocks);
   tbb::parallel_for(std::size_t(0), kBlocks, [&](std::size_t b) {
     cursor[b].assign(n, 0);
     const auto [first, last] = blockRange(b);
@@ -573,7 +573,7 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
 
   // marks[c][j] bit i: vertex j of cell c marks facet i of c. Only the thread handling
   // vertex j writes that byte, so no synchronisation is needed.
-  std::vector<std::array<std::uint8_t, 4>> marks(finite_cells, {0, 0, 0, 0});
+  std::vector<std::array<std::uint8_t, 4> > marks(finite_cells, {0, 0, 0, 0});
   tbb::enumerable_thread_specific<std::vector<CellHandle>> stars;
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, vertices.size(), 512),
@@ -606,7 +606,7 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
   // Most facets are marked by none of their vertices: those are skipped on the marks
   // alone, without reading the neighbouring cell. Blocks of cells in parallel, joined
   // in cell order.
-  std::vector<std::vector<MarkedTriangle>> found(kBlocks);
+  std::vector<std::vector<MarkedTriangle> > found(kBlocks);
   tbb::parallel_for(std::size_t(0), kBlocks, [&](std::size_t b) {
     const std::size_t first = std::min(b * block_size, finite_cells);
     const std::size_t last = std::min((b + 1) * block_size, finite_cells);
@@ -729,8 +729,8 @@ VoronoiCocone::compute(const std::vector<Eigen::Vector3d>& points)
           input[i] = Point(d.centered[i].x(), d.centered[i].y(), d.centered[i].z());
         std::vector<std::size_t> order(n);
         std::iota(order.begin(), order.end(), std::size_t(0));
-        using SortTraits =
-            CGAL::Spatial_sort_traits_adapter_3<Kernel, CGAL::Pointer_property_map<Point>::type>;
+        using SortTraits = CGAL::Spatial_sort_traits_adapter_3<
+            Kernel, CGAL::Pointer_property_map<Point>::type>;
         CGAL::spatial_sort<CGAL::Parallel_if_available_tag>(
             order.begin(), order.end(), SortTraits(CGAL::make_property_map(input)));
         VertexHandle hint;

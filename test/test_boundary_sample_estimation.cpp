@@ -406,7 +406,8 @@ TEST_P(OpenSurface, CompletedRimRowIsTheOutermostRow)
     std::size_t flagged_in_row = 0;
     for (std::size_t i = 0; i < in_row.size(); ++i)
       flagged_in_row += in_row[i] && run.flags[i];
-    precision = static_cast<double>(flagged_in_row) / std::max<std::size_t>(1, run.count);
+    precision =
+        static_cast<double>(flagged_in_row) / std::max<std::size_t>(1, run.count);
     recall = static_cast<double>(flagged_in_row) / row;
   };
   const auto cloud = toCloud(shape.points);

@@ -207,11 +207,12 @@ runBoundarySection(Context& context)
     for (const OurSetting& setting : kOurSettings) {
       if (input->size() > 500000 && !setting.is_default)
         continue; // the time on the large input
-      c.runs.push_back({setting.name, bestOf(repeats,
-                                             [&](int r, Measurement& m) {
-                                               runOurs(*input, setting, r == 0, m);
-                                             },
-                                             timeout)});
+      c.runs.push_back({setting.name, bestOf(
+                                          repeats,
+                                          [&](int r, Measurement& m) {
+                                            runOurs(*input, setting, r == 0, m);
+                                          },
+                                          timeout)});
     }
     c.peers = !(quick && input->size() >= 100000) && !context.options.no_peers;
     if (c.peers)
@@ -232,21 +233,30 @@ runBoundarySection(Context& context)
   report.heading(2, "Boundary detection");
   report.paragraph(
       "Open generated surfaces with a known rim, scored two ways. 'Within 3 spacings' "
-      "(P3, R3, F1 3sp): precision is the share of the flagged samples within 3 spacings "
+      "(P3, R3, F1 3sp): precision is the share of the flagged samples within 3 "
+      "spacings "
       "of the true rim, recall the share of the rim (densely sampled, spacing/4 apart) "
       "with a flagged sample within 3 spacings, as in "
-      "test/test_boundary_sample_estimation.cpp; any band up to 3 spacings wide scores 1. "
-      "'Rim row' (P row, R row, F1 row): against the samples BOUNDARY is defined to find, "
+      "test/test_boundary_sample_estimation.cpp; any band up to 3 spacings wide scores "
+      "1. "
+      "'Rim row' (P row, R row, F1 row): against the samples BOUNDARY is defined to "
+      "find, "
       "the outermost row (the rim vertices of a correct reconstruction), taken as the "
       "nearest sample of each dense rim point; precision is the share of the flags in "
       "that row, recall the share of the row flagged. Spacing sqrt(area / n). Ours: "
-      "pcl::BoundarySampleEstimation with the paper's parameters (rho 0.99, alpha pi/6, "
-      "theta pi/8) in three settings: BOUNDARY as published (no extension), the default "
-      "(the rim row completed from BOUNDARY's flags), and the default with 2 band rings; "
+      "pcl::BoundarySampleEstimation with the paper's parameters (rho 0.99, alpha "
+      "pi/6, "
+      "theta pi/8) in three settings: BOUNDARY as published (no extension), the "
+      "default "
+      "(the rim row completed from BOUNDARY's flags), and the default with 2 band "
+      "rings; "
       "peer: "
-      "pcl::BoundaryEstimation with normals from pcl::NormalEstimation, both with a radius "
-      "search of 2 or 3 mean spacings, angle threshold pi/2 (default); its time includes "
-      "the normals. On the closed large torus no sample should be flagged: it measures the "
+      "pcl::BoundaryEstimation with normals from pcl::NormalEstimation, both with a "
+      "radius "
+      "search of 2 or 3 mean spacings, angle threshold pi/2 (default); its time "
+      "includes "
+      "the normals. On the closed large torus no sample should be flagged: it measures "
+      "the "
       "time only.");
   Table table({"input", "method", "s", "peak MB", "flagged", "P3", "R3", "F1 3sp", "P row",
                "R row", "F1 row"});
@@ -312,11 +322,12 @@ runBoundarySection(Context& context)
         s += (s.empty() ? "" : ", ") + x;
       return s;
     };
-    context.setTarget("boundary F1, rim row",
-                      "higher F1 than BoundaryEstimation on every generated open surface, "
-                      "scored against the outermost row of samples (best of our three "
-                      "settings vs best of its two radii)",
-                      row_met ? 1 : 0, joined(row_notes));
+    context.setTarget(
+        "boundary F1, rim row",
+        "higher F1 than BoundaryEstimation on every generated open surface, "
+        "scored against the outermost row of samples (best of our three "
+        "settings vs best of its two radii)",
+        row_met ? 1 : 0, joined(row_notes));
     context.setTarget("boundary F1, within 3 spacings",
                       "the same, scored within 3 spacings of the rim (any band up to 3 "
                       "spacings wide scores 1)",
