@@ -382,7 +382,8 @@ runReconstructionSection(Context& context)
   report.heading(3, "Delaunay floor and our core");
   report.paragraph(
       "DT: bare CGAL Delaunay_triangulation_3 (EPICK, points with info, bulk insertion), "
-      "single-threaded, as inside our core. Core: VoronoiCocone::compute, whose timings() "
+      "single-threaded: what plain CGAL gives (our core runs the same spatial sort on every "
+      "core, then the same insertion). Core: VoronoiCocone::compute, whose timings() "
       "split the triangulation (duplicates included) from the per-sample Voronoi geometry "
       "(poles, heights, cocone radii, marked triangles; parallel). geometry/DT uses the "
       "core's own split of the same run. Peak: resident memory growth.");
