@@ -931,47 +931,56 @@ Mesher::stitch(std::vector<std::vector<SampleIndex> >& loops)
   // Offer every hole its Delaunay triangles, in a group of its own (numbered after
   // those of any earlier call).
   const std::uint32_t first_group = static_cast<std::uint32_t>(group_start_.size() - 1);
-  std::vector<SampleIndex> neighbours;
-  std::vector<std::array<SampleIndex, 3> > delaunay;
   std::vector<std::vector<SampleIndex> > members(loops.size());
   std::vector<std::uint8_t> kept_open(loops.size(), 0);
+  std::vector<std::vector<std::array<SampleIndex, 3> > > offered(loops.size());
+  // Each hole's samples and Delaunay triangles, in parallel (read-only), then added to
+  // the pool in hole order.
+  const auto prepare = [&](const tbb::blocked_range<std::size_t>& range) {
+    std::vector<SampleIndex> neighbours, inner;
+    for (std::size_t h = range.begin(); h != range.end(); ++h) {
+      std::vector<SampleIndex>& vertices = members[h];
+      vertices = loops[h];
+      // Unused samples next to two or more hole vertices lie in the hole.
+      inner.clear();
+      for (const SampleIndex v : loops[h]) {
+        voronoi_.delaunayNeighbours(v, neighbours);
+        for (const SampleIndex w : neighbours)
+          if (mesh_degree_[w] == 0)
+            inner.push_back(w);
+      }
+      std::sort(inner.begin(), inner.end());
+      for (std::size_t i = 0; i < inner.size();) {
+        std::size_t j = i;
+        while (j < inner.size() && inner[j] == inner[i])
+          ++j;
+        if (j - i >= 2)
+          vertices.push_back(inner[i]);
+        i = j;
+      }
+      // Any surface spanning a loop has at least the loop's vector area (Stokes), so a
+      // loop whose vector area already makes it a true boundary cannot be stitched.
+      // Spare the long ones (a terrain's outer rim) the Delaunay fill; shorter ones
+      // still go through it, as the polygon fill may grow them into another loop.
+      if (loops[h].size() > kLargestPolygonFill) {
+        Vector vector_area = Vector::Zero();
+        for (std::size_t k = 0; k < loops[h].size(); ++k)
+          vector_area += 0.5 * points_[loops[h][k]].cross(
+                                   points_[loops[h][(k + 1) % loops[h].size()]]);
+        kept_open[h] = isTrueBoundary(vector_area.norm(), loopLength(loops[h]),
+                                      typicalSpacing(vertices));
+      }
+      if (!kept_open[h])
+        voronoi_.delaunayTrianglesAmong(vertices, offered[h]);
+    }
+  };
+  detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, loops.size(), 4), prepare);
+  });
   for (std::size_t h = 0; h < loops.size(); ++h) {
-    std::vector<SampleIndex>& vertices = members[h];
-    vertices = loops[h];
-    // Unused samples next to two or more hole vertices lie in the hole.
-    std::vector<SampleIndex> inner;
-    for (const SampleIndex v : loops[h]) {
-      voronoi_.delaunayNeighbours(v, neighbours);
-      for (const SampleIndex w : neighbours)
-        if (mesh_degree_[w] == 0)
-          inner.push_back(w);
-    }
-    std::sort(inner.begin(), inner.end());
-    for (std::size_t i = 0; i < inner.size();) {
-      std::size_t j = i;
-      while (j < inner.size() && inner[j] == inner[i])
-        ++j;
-      if (j - i >= 2)
-        vertices.push_back(inner[i]);
-      i = j;
-    }
-    // Any surface spanning a loop has at least the loop's vector area (Stokes), so a
-    // loop whose vector area already makes it a true boundary cannot be stitched. Spare
-    // the long ones (a terrain's outer rim) the Delaunay fill; shorter ones still go
-    // through it, as the polygon fill may grow them into another loop.
-    if (loops[h].size() > kLargestPolygonFill) {
-      Vector vector_area = Vector::Zero();
-      for (std::size_t k = 0; k < loops[h].size(); ++k)
-        vector_area +=
-            0.5 * points_[loops[h][k]].cross(points_[loops[h][(k + 1) % loops[h].size()]]);
-      kept_open[h] = isTrueBoundary(vector_area.norm(), loopLength(loops[h]),
-                                    typicalSpacing(vertices));
-    }
-    if (!kept_open[h]) {
-      voronoi_.delaunayTrianglesAmong(vertices, delaunay);
-      for (const auto& t : delaunay)
-        addToPool({t[0], t[1], t[2]}, first_group + static_cast<std::uint32_t>(h));
-    }
+    for (const auto& t : offered[h])
+      addToPool({t[0], t[1], t[2]}, first_group + static_cast<std::uint32_t>(h));
+    std::vector<std::array<SampleIndex, 3> >().swap(offered[h]);
     group_start_.push_back(static_cast<std::uint32_t>(pool_.size()));
   }
   rebuildIncidence();
