@@ -535,14 +535,15 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
   // counts its cells per sample, so it knows where in each list its own cells go.
   constexpr std::size_t kBlocks = 4;
   const std::size_t block_size = (cell_samples.size() + kBlocks - 1) / kBlocks;
-  const auto blockRange = [&](std::size_t b) {
-    return std::make_pair(std::min(b * block_size, cell_samples.size()),
-                          std::min((b + 1) * block_size, cell_samples.size()));
+  // Block b of the cells [0, count).
+  const auto blockRange = [&](std::size_t b, std::size_t count) {
+    return std::make_pair(std::min(b * block_size, count),
+                          std::min((b + 1) * block_size, count));
   };
   std::vector<std::vector<std::uint32_t> > cursor(kBlocks);
   tbb::parallel_for(std::size_t(0), kBlocks, [&](std::size_t b) {
     cursor[b].assign(n, 0);
-    const auto [first, last] = blockRange(b);
+    const auto [first, last] = blockRange(b, cell_samples.size());
     for (std::size_t k = first; k < last; ++k)
       for (const SampleIndex s : cell_samples[k])
         if (s != kNoSample)
@@ -557,7 +558,7 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
   }
   std::vector<std::uint32_t> star_cells(star_offsets[n]);
   tbb::parallel_for(std::size_t(0), kBlocks, [&](std::size_t b) {
-    const auto [first, last] = blockRange(b);
+    const auto [first, last] = blockRange(b, cell_samples.size());
     for (std::size_t k = first; k < last; ++k)
       for (const SampleIndex s : cell_samples[k])
         if (s != kNoSample)
@@ -608,8 +609,7 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
   // in cell order.
   std::vector<std::vector<MarkedTriangle> > found(kBlocks);
   tbb::parallel_for(std::size_t(0), kBlocks, [&](std::size_t b) {
-    const std::size_t first = std::min(b * block_size, finite_cells);
-    const std::size_t last = std::min((b + 1) * block_size, finite_cells);
+    const auto [first, last] = blockRange(b, finite_cells);
     for (std::size_t k = first; k < last; ++k)
       for (int i = 0; i < 4; ++i) {
         MarkedTriangle triangle;
