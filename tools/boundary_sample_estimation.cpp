@@ -40,8 +40,8 @@ commandLine()
         "band like pcl::BoundaryEstimation's; 0 is BOUNDARY as published",
         0, "", pcl::cocone::kBandRingsRange},
        flagOption("-no_rim_completion",
-        "flag only what BOUNDARY as published flags: about half of the outermost row "
-        "along a rim (by default the row is completed from those flags)"),
+        "flag only what BOUNDARY as published flags: a quarter to a half of the outermost "
+        "row along a rim (by default the row is completed from those flags)"),
        flagOption("-rgb",
         "also write an rgb field: red for boundary samples, grey for the others, so "
         "that pcl_viewer shows them as in the paper's figure 4"),

@@ -30,7 +30,7 @@ namespace pcl {
  * open surface the flags mark the outermost row of samples along the rim (the rim
  * vertices of a correct reconstruction); they also mark samples along sharp edges and
  * in thin, undersampled parts. By default the rim row is completed beyond the paper
- * (see setRimRowCompletion): BOUNDARY alone flags about half of it.
+ * (see setRimRowCompletion): BOUNDARY alone flags a quarter to a half of it.
  *
  * Unlike pcl::BoundaryEstimation it needs no normals, no search radius and no k: the
  * one Delaunay triangulation of the cloud defines every neighbourhood. Output is
@@ -130,7 +130,7 @@ public:
   }
 
   /** \brief Beyond the paper: complete the outermost row of samples along each rim.
-   * BOUNDARY as published flags only 40-65% of that row: a rim sample whose Voronoi
+   * BOUNDARY as published flags only 27-54% of that row: a rim sample whose Voronoi
    * cell is closed off just beyond the rim by its neighbours' cells passes the flatness
    * test. With completion on, every sample reached from a flag along cocone neighbours
    * whose nearby cocone neighbours leave a gap wider than 2 pi / 3 in its tangent plane

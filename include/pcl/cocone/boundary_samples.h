@@ -35,7 +35,7 @@ struct BoundaryParameters
    * (kBandRingsRange). */
   unsigned band_rings = 0;
   /** \brief Beyond the paper: complete the outermost row along a rim. BOUNDARY as
-   * published flags 40-65% of that row (a rim sample whose cell is closed off just
+   * published flags 27-54% of that row (a rim sample whose cell is closed off just
    * beyond the rim by its neighbours' cells passes the ratio test). With this on,
    * starting from BOUNDARY's flags and walking along cocone neighbours, every sample
    * whose nearby cocone neighbours leave a gap wider than 2 pi / 3 in its tangent
