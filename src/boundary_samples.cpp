@@ -25,11 +25,11 @@ isValid(const BoundaryParameters& parameters)
 
 namespace {
 
-/** The cocone-neighbour graph made symmetric: p and q are linked when one's cocone
- * meets the other's cell. Calls visit(q) for each such q of p (with repeats). */
+/** Calls visit(q, p_marks, q_marks) for each other vertex q of every marked triangle
+ * at p (with repeats), saying whether p's cocone and q's cocone mark that triangle. */
 template <typename Visit>
 void
-forEachCoconeLink(const VoronoiCocone& voronoi, SampleIndex p, Visit&& visit)
+forEachTriangleNeighbour(const VoronoiCocone& voronoi, SampleIndex p, Visit&& visit)
 {
   const std::vector<MarkedTriangle>& triangles = voronoi.markedTriangles();
   for (const std::uint32_t t : voronoi.trianglesAround(p)) {
@@ -37,13 +37,34 @@ forEachCoconeLink(const VoronoiCocone& voronoi, SampleIndex p, Visit&& visit)
     int self = 0;
     while (triangle.vertex[self] != p)
       ++self;
-    for (int k = 0; k < 3; ++k) {
-      if (k == self)
-        continue;
-      if (triangle.isMarkedBy(self) || triangle.isMarkedBy(k))
-        visit(triangle.vertex[k]);
-    }
+    for (int k = 0; k < 3; ++k)
+      if (k != self)
+        visit(triangle.vertex[k], triangle.isMarkedBy(self), triangle.isMarkedBy(k));
   }
+}
+
+/** The cocone-neighbour graph made symmetric: p and q are linked when one's cocone
+ * meets the other's cell. Calls visit(q) for each such q of p (with repeats). */
+template <typename Visit>
+void
+forEachCoconeLink(const VoronoiCocone& voronoi, SampleIndex p, Visit&& visit)
+{
+  forEachTriangleNeighbour(voronoi, p, [&](SampleIndex q, bool p_marks, bool q_marks) {
+    if (p_marks || q_marks)
+      visit(q);
+  });
+}
+
+/** The samples q whose cocone meets V_p (p in N_q). Calls visit(q) for each (with
+ * repeats). */
+template <typename Visit>
+void
+forEachMarker(const VoronoiCocone& voronoi, SampleIndex p, Visit&& visit)
+{
+  forEachTriangleNeighbour(voronoi, p, [&](SampleIndex q, bool, bool q_marks) {
+    if (q_marks)
+      visit(q);
+  });
 }
 
 /** Links longer than this many times the median link of a sample are not its surface
@@ -152,14 +173,6 @@ detectBoundarySamples(const VoronoiCocone& voronoi,
   // Both conditions per sample, in parallel. The normal condition: every q whose cocone
   // meets V_p (p in N_q: a triangle at p that q marks) agrees with p.
   std::vector<std::uint8_t> thin(n, 0), disagrees(n, 0);
-  const auto forEachMarker = [&](SampleIndex p, auto&& visit) {
-    for (const std::uint32_t t : voronoi.trianglesAround(p)) {
-      const MarkedTriangle& triangle = voronoi.markedTriangles()[t];
-      for (int k = 0; k < 3; ++k)
-        if (triangle.vertex[k] != p && triangle.isMarkedBy(k))
-          visit(triangle.vertex[k]);
-    }
-  };
   detail::runInArena(voronoi.getNumberOfThreads(), [&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const auto& range) {
       for (std::size_t i = range.begin(); i != range.end(); ++i) {
@@ -167,7 +180,7 @@ detectBoundarySamples(const VoronoiCocone& voronoi,
         if (voronoi.representative(p) != p)
           continue;
         thin[i] = voronoi.ratio(p) <= parameters.ratio_bound;
-        forEachMarker(p, [&](SampleIndex q) { disagrees[i] |= !agree(p, q); });
+        forEachMarker(voronoi, p, [&](SampleIndex q) { disagrees[i] |= !agree(p, q); });
       }
     });
   });
@@ -191,8 +204,9 @@ detectBoundarySamples(const VoronoiCocone& voronoi,
     queue.pop_back();
     queued[p] = 0;
     bool joins = false;
-    forEachMarker(
-        p, [&](SampleIndex q) { joins = joins || (interior[q] && agree(p, q)); });
+    forEachMarker(voronoi, p, [&](SampleIndex q) {
+      joins = joins || (interior[q] && agree(p, q));
+    });
     if (!joins)
       continue;
     interior[p] = 1;

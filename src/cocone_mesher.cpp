@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "disjoint_sets.h"
 #include "parallel.h"
 
 #include <pcl/cocone/cocone_mesher.h>
@@ -122,12 +123,17 @@ private:
   {
     for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1]; ++k)
       f(incidence_[k].triangle);
-    if (!late_.empty()) {
-      const auto late = late_.find(v);
-      if (late != late_.end())
-        for (const std::uint32_t t : late->second)
-          f(t);
-    }
+    forEachLate(v, f);
+  }
+  /** Calls f(t) for every pool triangle t at v added since the lists were rebuilt. */
+  template <typename F> void forEachLate(SampleIndex v, F&& f) const
+  {
+    if (late_.empty())
+      return;
+    const auto late = late_.find(v);
+    if (late != late_.end())
+      for (const std::uint32_t t : late->second)
+        f(t);
   }
   /** Pool triangles on edge (a, b) accepted by \a keep. */
   template <typename Keep>
@@ -142,13 +148,10 @@ private:
       if ((at.other[0] == b || at.other[1] == b) && keep(at.triangle))
         out.push_back(at.triangle);
     }
-    if (!late_.empty()) {
-      const auto late = late_.find(a);
-      if (late != late_.end())
-        for (const std::uint32_t t : late->second)
-          if (contains(t, b) && keep(t))
-            out.push_back(t);
-    }
+    forEachLate(a, [&](std::uint32_t t) {
+      if (contains(t, b) && keep(t))
+        out.push_back(t);
+    });
   }
   /** Mesh triangles on edge (a, b). */
   void meshOnEdge(SampleIndex a, SampleIndex b, std::vector<std::uint32_t>& out) const
@@ -1621,23 +1624,12 @@ Mesher::orientClosedComponentsOutward()
   // Components of the mesh through shared vertices, by union-find over the samples.
   // Every vertex has a single fan (resolvePinches), so these are the components
   // through shared edges, found without looking up a single edge.
-  std::vector<SampleIndex> parent(n_);
-  std::iota(parent.begin(), parent.end(), SampleIndex(0));
-  const auto find = [&](SampleIndex v) {
-    while (parent[v] != v)
-      v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  const auto unite = [&](SampleIndex a, SampleIndex b) {
-    a = find(a);
-    b = find(b);
-    if (a != b)
-      parent[std::max(a, b)] = std::min(a, b);
-  };
+  detail::DisjointSets components(n_);
+  const auto find = [&](SampleIndex v) { return components.find(v); };
   for (std::uint32_t t = 0; t < pool_.size(); ++t)
     if (state_[t] == kInMesh) {
-      unite(oriented_[t][0], oriented_[t][1]);
-      unite(oriented_[t][0], oriented_[t][2]);
+      components.unite(oriented_[t][0], oriented_[t][1]);
+      components.unite(oriented_[t][0], oriented_[t][2]);
     }
   // Signed volume per component (divergence theorem, up to a factor 6), summed in
   // triangle order.

@@ -2,6 +2,8 @@
 // Combinatorial analysis of a triangle soup given as index triples.
 #include <pcl/cocone/mesh_topology.h>
 
+#include "disjoint_sets.h"
+
 #include <algorithm>
 #include <limits>
 #include <numeric>
@@ -11,42 +13,9 @@ namespace cocone {
 
 namespace {
 
+using detail::DisjointSets;
+
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-
-/** Disjoint sets with path halving; the smaller index becomes the root, so the result
- * does not depend on the order of the unions. */
-class DisjointSets
-{
-public:
-  explicit DisjointSets(std::size_t n) : parent_(n)
-  {
-    std::iota(parent_.begin(), parent_.end(), std::uint32_t(0));
-  }
-
-  std::uint32_t
-  find(std::uint32_t x)
-  {
-    while (parent_[x] != x) {
-      parent_[x] = parent_[parent_[x]];
-      x = parent_[x];
-    }
-    return x;
-  }
-
-  void
-  unite(std::uint32_t a, std::uint32_t b)
-  {
-    a = find(a);
-    b = find(b);
-    if (a < b)
-      parent_[b] = a;
-    else if (b < a)
-      parent_[a] = b;
-  }
-
-private:
-  std::vector<std::uint32_t> parent_;
-};
 
 /** Sorts a short range in place; the buckets of the edge table hold about six entries,
  * where std::sort's set-up costs more than the sort. */

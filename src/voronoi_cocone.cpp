@@ -517,10 +517,9 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
     vertices.push_back(v);
 
   // The star of every vertex at once (cells by sample, infinite cells after the
-  // finite ones): one pass over the cells instead of a search per vertex, which
-  // measured twice as slow.
-  // The samples of every cell (kNoSample for the infinite vertex), read once in
-  // parallel: the passes below then scan a flat array instead of chasing handles.
+  // finite ones): passes over the cells instead of a search per vertex, which measured
+  // twice as slow. The samples of every cell (kNoSample for the infinite vertex) are
+  // read once, in parallel, so these passes scan a flat array instead of handles.
   std::vector<std::array<SampleIndex, 4> > cell_samples(all_cells.size());
   const VertexHandle infinite = dt.infinite_vertex();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, all_cells.size(), 4096),
