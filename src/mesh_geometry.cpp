@@ -124,6 +124,40 @@ trianglesIntersect(const std::vector<Eigen::Vector3d>& points,
   return intersectBeyondSharedFeatures(corners.data(), la, lb);
 }
 
+bool
+segmentCrossesTriangle(const std::vector<Eigen::Vector3d>& points, std::uint32_t a,
+                       std::uint32_t b, const TriangleIndices& t)
+{
+  const Point pa = toCgal(points.at(a)), pb = toCgal(points.at(b));
+  const Point p0 = toCgal(points.at(t[0])), p1 = toCgal(points.at(t[1])),
+              p2 = toCgal(points.at(t[2]));
+  if (CGAL::collinear(p0, p1, p2))
+    return false; // no area to meet
+  const auto slot = [&](std::uint32_t v) {
+    for (int k = 0; k < 3; ++k)
+      if (t[k] == v)
+        return k;
+    return -1;
+  };
+  const int slot_a = slot(a), slot_b = slot(b);
+  if (slot_a >= 0 && slot_b >= 0)
+    return false; // an edge of t
+  if (slot_a < 0 && slot_b < 0)
+    return CGAL::do_intersect(Segment(pa, pb), Triangle(p0, p1, p2));
+  // One shared vertex s; the segment leaves it towards the other end q. Off the plane
+  // of t, it meets that plane only at s. In the plane, it enters t exactly when q lies
+  // in the closed angle of t at s (along an edge it runs over that edge).
+  const int shared = slot_a >= 0 ? slot_a : slot_b;
+  const Point& s = shared == 0 ? p0 : shared == 1 ? p1 : p2;
+  const Point& q = slot_a >= 0 ? pb : pa;
+  const Point& x = shared == 0 ? p1 : p0;
+  const Point& y = shared == 2 ? p1 : p2;
+  if (!CGAL::coplanar(s, x, y, q))
+    return false;
+  return CGAL::coplanar_orientation(s, x, y, q) != CGAL::NEGATIVE &&
+         CGAL::coplanar_orientation(s, y, x, q) != CGAL::NEGATIVE;
+}
+
 std::size_t
 countSelfIntersections(const std::vector<Eigen::Vector3d>& points,
                        const std::vector<TriangleIndices>& triangles)

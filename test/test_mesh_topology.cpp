@@ -464,6 +464,35 @@ TEST(MeshChecks, SharedVertexAndSharedEdgeCases)
   EXPECT_EQ(count({2, 1, 0}), 1u);  // the same triangle again
 }
 
+TEST(MeshChecks, SegmentAgainstTriangle)
+{
+  // Triangle (0, 1, 2) in z = 0, and segment ends around it.
+  const Points p = {{0, 0, 0},      {2, 0, 0},     {0, 2, 0}, // 0 1 2
+                    {0.5, 0.5, -1}, {0.5, 0.5, 1},            // 3 4: through it
+                    {3, 3, -1},     {3, 3, 1},                // 5 6: beside it
+                    {1, 1, 1},                                // 7: above
+                    {1, 0.5, 0},    {-1, -1, 0},              // 8 9: in its plane
+                    {1, 0, 0},      {3, 0, 0},                // 10 11: on line 0-1
+                    {0.5, 0.5, 0},  {1, 1, 0}}; // 12: inside; 13: on edge 1-2
+  const auto crosses = [&](std::uint32_t a, std::uint32_t b) {
+    return pcl::cocone::segmentCrossesTriangle(p, a, b, {0, 1, 2});
+  };
+  EXPECT_TRUE(crosses(3, 4));  // pierces the interior
+  EXPECT_FALSE(crosses(5, 6)); // passes beside it
+  EXPECT_FALSE(crosses(0, 7)); // leaves a shared vertex, off the plane
+  EXPECT_TRUE(crosses(0, 8));  // leaves a shared vertex into the triangle
+  EXPECT_FALSE(crosses(9, 0)); // reaches a shared vertex from outside, in the plane
+  EXPECT_TRUE(crosses(0, 10)); // runs along an edge, shared vertex 0 only
+  EXPECT_FALSE(
+      crosses(11, 1)); // on the line of edge 0-1, beyond vertex 1: meets it there
+  EXPECT_FALSE(crosses(1, 0)); // an edge of the triangle itself
+  EXPECT_TRUE(crosses(7, 12)); // touches the interior at its end
+  EXPECT_TRUE(crosses(0, 13)); // ends on the far edge
+  EXPECT_FALSE(pcl::cocone::segmentCrossesTriangle(p, 3, 4, {0, 10, 1})); // no area
+  EXPECT_THROW(pcl::cocone::segmentCrossesTriangle(p, 0, 99, {0, 1, 2}),
+               std::out_of_range);
+}
+
 TEST(MeshChecks, NonManifoldSoupsAreAccepted)
 {
   // Three fins on one edge, and a bowtie: no intersection beyond shared features.

@@ -31,6 +31,22 @@ trianglesIntersect(const std::vector<Eigen::Vector3d>& points,
                    const TriangleIndices& a,
                    const TriangleIndices& b);
 
+/** \brief Whether segment \a a \a b meets triangle \a t other than at a vertex they
+ * share (by index); touching counts as meeting, and an edge of \a t meets it only in
+ * itself. Exact predicates.
+ * \param[in] points the vertex coordinates (any unit)
+ * \param[in] a first end of the segment, an index into \a points
+ * \param[in] b second end of the segment, an index into \a points
+ * \param[in] t the triangle, as three indices into \a points
+ * \return true when they meet beyond their shared vertex; false otherwise, and always
+ *         when \a t has no area
+ * \throws std::out_of_range for an index outside \a points */
+PCL_COCONE_EXPORT bool
+segmentCrossesTriangle(const std::vector<Eigen::Vector3d>& points,
+                       std::uint32_t a,
+                       std::uint32_t b,
+                       const TriangleIndices& t);
+
 /** \brief Counts the pairs of triangles of a mesh that intersect (see
  * trianglesIntersect). Triangles without area (a repeated index or collinear corners)
  * are skipped. Bounding-box filtered: O(T log T) for a well-spread mesh.
