@@ -1827,6 +1827,25 @@ Mesher::run(std::vector<TriangleIndices>& output)
     if (parameters_.stitch_holes)
       stitch(report_.open_loops);
   }
+  // Growing a hole to fill it can open others (its blockers need not touch it), and
+  // those were in no list yet: they get their turn, and the report lists the loops
+  // of the mesh as it is.
+  if (parameters_.stitch_holes) {
+    const auto canonical = [](std::vector<SampleIndex> loop) {
+      std::sort(loop.begin(), loop.end());
+      return loop;
+    };
+    std::vector<std::vector<SampleIndex> > known;
+    for (const auto& loop : report_.open_loops)
+      known.push_back(canonical(loop));
+    std::sort(known.begin(), known.end());
+    std::vector<std::vector<SampleIndex> > opened;
+    for (auto& loop : traceLoops())
+      if (!std::binary_search(known.begin(), known.end(), canonical(loop)))
+        opened.push_back(std::move(loop));
+    stitch(opened);
+  }
+  report_.open_loops = traceLoops();
   lap(timings.stitching, "stitching");
   orientClosedComponentsOutward();
 

@@ -532,4 +532,19 @@ TEST(CoconeReconstructionData, MilkKeepsItsOpenRim)
   EXPECT_GE(result.topology.vertices, data.cloud->size() * 95 / 100);
 }
 
+// Airborne LiDAR is too sparse for boundary detection (most samples are flagged) and
+// stitching grows holes over the triangles in the way of their fills: the hardest case
+// for keeping the surface manifold and without self-intersections, and for the
+// reported loops to be those of the mesh (reconstruct() checks both).
+TEST(CoconeReconstructionData, LidarTerrainStaysManifoldAndReportsItsLoops)
+{
+  PCL_COCONE_REQUIRE_DATA_FILE(path, "pcl_lidar_terrain_samp11-utm_38010.pcd");
+  const DataSet data = loadDataSet(path);
+  const Result result = reconstruct(data.cloud, "lidar terrain");
+  EXPECT_TRUE(result.topology.isManifold());
+  EXPECT_GT(result.stitched, 0u);
+  // Most of the surface is still covered.
+  EXPECT_GE(result.topology.vertices, data.cloud->size() * 6 / 10);
+}
+
 } // namespace
