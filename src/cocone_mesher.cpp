@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -1654,53 +1655,80 @@ Mesher::removeCrossings()
       suspects.push_back(t);
   }
 
-  // The Delaunay neighbours of every corner, looked up once each rather than once per
-  // suspect triangle at it.
+  // The Delaunay neighbours of every corner, looked up once each (in parallel) rather
+  // than once per suspect triangle at it.
   std::vector<SampleIndex> corners;
   for (const std::uint32_t t : suspects)
     corners.insert(corners.end(), oriented_[t].begin(), oriented_[t].end());
   std::sort(corners.begin(), corners.end());
   corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
-  std::vector<std::uint32_t> offsets(corners.size() + 1, 0);
-  std::vector<SampleIndex> adjacency, neighbours;
-  for (std::size_t k = 0; k < corners.size(); ++k) {
-    voronoi_.delaunayNeighbours(corners[k], neighbours);
-    adjacency.insert(adjacency.end(), neighbours.begin(), neighbours.end());
-    offsets[k + 1] = static_cast<std::uint32_t>(adjacency.size());
+  std::vector<std::vector<SampleIndex> > adjacency(corners.size());
+  // The mesh triangles at every sample, as flat lists: the pass below reads only these.
+  std::vector<std::uint32_t> mesh_offsets(n_ + 1, 0), mesh_at;
+  for (std::uint32_t t = 0; t < pool_.size(); ++t)
+    if (state_[t] == kInMesh)
+      for (const SampleIndex v : oriented_[t])
+        ++mesh_offsets[v + 1];
+  for (std::size_t v = 0; v < n_; ++v)
+    mesh_offsets[v + 1] += mesh_offsets[v];
+  mesh_at.resize(mesh_offsets[n_]);
+  {
+    std::vector<std::uint32_t> next(mesh_offsets.begin(), mesh_offsets.end() - 1);
+    for (std::uint32_t t = 0; t < pool_.size(); ++t)
+      if (state_[t] == kInMesh)
+        for (const SampleIndex v : oriented_[t])
+          mesh_at[next[v]++] = t;
   }
 
   // Every crossing pair (suspect, mesh triangle), found in parallel without changing
   // anything; the mesh triangles that can reach t are those at its corners and at
-  // their Delaunay neighbours (a triangle crossing a small one has a corner next to it).
+  // their Delaunay neighbours (a triangle crossing a small one has a corner next to
+  // it). Samples and triangles already looked at for suspect i carry the stamp i (per
+  // thread), so nothing is sorted; the crossings are listed in increasing order.
+  constexpr std::uint32_t kNoStamp = std::numeric_limits<std::uint32_t>::max();
   std::vector<std::vector<std::uint32_t> > crossing(suspects.size());
+  tbb::enumerable_thread_specific<
+      std::pair<std::vector<std::uint32_t>, std::vector<std::uint32_t> > >
+      stamps([&] {
+        return std::make_pair(std::vector<std::uint32_t>(n_, kNoStamp),
+                              std::vector<std::uint32_t>(pool_.size(), kNoStamp));
+      });
   const auto findCrossings = [&](const tbb::blocked_range<std::size_t>& range) {
-    std::vector<SampleIndex> samples;
-    std::vector<std::uint32_t> nearby;
+    auto& [sample_stamp, triangle_stamp] = stamps.local();
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const TriangleIndices& t = oriented_[suspects[i]];
-      samples.assign(t.begin(), t.end());
-      for (const SampleIndex v : t) {
+      const std::uint32_t stamp = static_cast<std::uint32_t>(i);
+      const std::uint32_t t = suspects[i];
+      const TriangleIndices& o = oriented_[t];
+      triangle_stamp[t] = stamp;
+      const auto visit = [&](SampleIndex v) {
+        if (sample_stamp[v] == stamp)
+          return;
+        sample_stamp[v] = stamp;
+        for (std::uint32_t k = mesh_offsets[v]; k < mesh_offsets[v + 1]; ++k) {
+          const std::uint32_t u = mesh_at[k];
+          if (triangle_stamp[u] == stamp)
+            continue;
+          triangle_stamp[u] = stamp;
+          if (trianglesIntersect(points_, o, oriented_[u]))
+            crossing[i].push_back(u);
+        }
+      };
+      for (const SampleIndex v : o) {
+        visit(v);
         const std::size_t k = static_cast<std::size_t>(
             std::lower_bound(corners.begin(), corners.end(), v) - corners.begin());
-        samples.insert(samples.end(), adjacency.begin() + offsets[k],
-                       adjacency.begin() + offsets[k + 1]);
+        for (const SampleIndex w : adjacency[k])
+          visit(w);
       }
-      std::sort(samples.begin(), samples.end());
-      samples.erase(std::unique(samples.begin(), samples.end()), samples.end());
-      nearby.clear();
-      for (const SampleIndex v : samples)
-        forEachAround(v, [&](std::uint32_t u) {
-          if (state_[u] == kInMesh && u != suspects[i])
-            nearby.push_back(u);
-        });
-      std::sort(nearby.begin(), nearby.end());
-      nearby.erase(std::unique(nearby.begin(), nearby.end()), nearby.end());
-      for (const std::uint32_t u : nearby)
-        if (trianglesIntersect(points_, t, oriented_[u]))
-          crossing[i].push_back(u);
+      std::sort(crossing[i].begin(), crossing[i].end());
     }
   };
   detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, corners.size(), 256),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t k = range.begin(); k != range.end(); ++k)
+                          voronoi_.delaunayNeighbours(corners[k], adjacency[k]);
+                      });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, suspects.size(), 64), findCrossings);
   });
 
