@@ -1699,6 +1699,7 @@ Mesher::removeCrossings()
       const std::uint32_t stamp = static_cast<std::uint32_t>(i);
       const std::uint32_t t = suspects[i];
       const TriangleIndices& o = oriented_[t];
+      const auto [low, high] = boundingBox(o);
       triangle_stamp[t] = stamp;
       const auto visit = [&](SampleIndex v) {
         if (sample_stamp[v] == stamp)
@@ -1709,6 +1710,12 @@ Mesher::removeCrossings()
           if (triangle_stamp[u] == stamp)
             continue;
           triangle_stamp[u] = stamp;
+          // Most are apart, which their boxes tell without the call (the exact test
+          // starts with the same strict comparison).
+          const auto [u_low, u_high] = boundingBox(oriented_[u]);
+          if ((u_high.array() < low.array()).any() ||
+              (high.array() < u_low.array()).any())
+            continue;
           if (trianglesIntersect(points_, o, oriented_[u]))
             crossing[i].push_back(u);
         }
