@@ -106,6 +106,8 @@ private:
   /** Puts pool triangle t (oriented already) into the mesh. */
   void enterMesh(std::uint32_t t)
   {
+    if (log_changes_)
+      changed_.emplace_back(t, state_[t] == kInMesh);
     state_[t] = kInMesh;
     for (const SampleIndex v : oriented_[t])
       ++mesh_degree_[v];
@@ -115,6 +117,8 @@ private:
   /** Takes mesh triangle t out of the mesh; its edges may be open now. */
   void leaveMesh(std::uint32_t t)
   {
+    if (log_changes_)
+      changed_.emplace_back(t, state_[t] == kInMesh);
     state_[t] = kRejected;
     const TriangleIndices& o = oriented_[t];
     for (int k = 0; k < 3; ++k) {
@@ -189,6 +193,15 @@ private:
     return {points_[t[0]].cwiseMin(points_[t[1]]).cwiseMin(points_[t[2]]),
             points_[t[0]].cwiseMax(points_[t[1]]).cwiseMax(points_[t[2]])};
   }
+  std::pair<Vector, Vector> boundingBox(const std::vector<SampleIndex>& samples) const
+  {
+    Vector low = points_[samples.front()], high = low;
+    for (const SampleIndex v : samples) {
+      low = low.cwiseMin(points_[v]);
+      high = high.cwiseMax(points_[v]);
+    }
+    return {low, high};
+  }
   void collectCandidates();
   void removeLids();
   bool fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
@@ -230,6 +243,7 @@ private:
   void resolvePinches(std::vector<std::uint32_t>* removed = nullptr);
   bool seedTriangle(std::uint32_t& seed);
   void stitch(std::vector<std::vector<SampleIndex> >& loops);
+  std::size_t stitchLoops(std::vector<std::vector<SampleIndex> >& tried);
   std::vector<std::vector<SampleIndex> > traceLoops() const;
   void insertUnusedSamples();
   std::size_t removeCrossings();
@@ -269,6 +283,10 @@ private:
   std::vector<SampleIndex> seed_order_;    // samples by decreasing x
   std::vector<SampleIndex> pinched_;       // apexes of forced steps
   std::vector<std::uint32_t> near_;        // scratch of crossesMesh
+  bool log_changes_ = false; // whether enterMesh and leaveMesh log to changed_
+  // Triangles that entered or left the mesh, each with whether it was in the mesh
+  // before.
+  std::vector<std::pair<std::uint32_t, bool> > changed_;
   std::vector<std::uint8_t> verdicts_;     // scratch of fillByDynamicProgramming
   std::vector<double> areas_;              // scratch of fillByDynamicProgramming
   std::vector<std::uint8_t> pinch_queued_; // scratch of resolvePinches, all 0 between calls
@@ -1062,6 +1080,46 @@ Mesher::stitch(std::vector<std::vector<SampleIndex> >& loops)
   loops.resize(kept);
 }
 
+// One round of stitching over the loops of the mesh: those not offered before, and
+// those offered before around which the mesh changed since (see run()). Returns the
+// number of loops offered.
+std::size_t
+Mesher::stitchLoops(std::vector<std::vector<SampleIndex> >& tried)
+{
+  // What changed since the last round, net: a fill tried and undone changes nothing.
+  std::stable_sort(changed_.begin(), changed_.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<std::pair<Vector, Vector> > changed_boxes;
+  for (std::size_t k = 0; k < changed_.size(); ++k)
+    if ((k == 0 || changed_[k].first != changed_[k - 1].first) &&
+        changed_[k].second != (state_[changed_[k].first] == kInMesh))
+      changed_boxes.push_back(boundingBox(oriented_[changed_[k].first]));
+  changed_.clear();
+  std::vector<std::vector<SampleIndex> > loops, keys;
+  for (std::vector<SampleIndex>& loop : traceLoops()) {
+    std::vector<SampleIndex> key = loop;
+    std::sort(key.begin(), key.end());
+    if (std::binary_search(tried.begin(), tried.end(), key)) {
+      const auto [low, high] = boundingBox(loop);
+      if (std::none_of(changed_boxes.begin(), changed_boxes.end(),
+                       [&](const auto& box) {
+                         return (box.first.array() <= high.array()).all() &&
+                                (low.array() <= box.second.array()).all();
+                       }))
+        continue;
+    }
+    else {
+      keys.push_back(std::move(key));
+    }
+    loops.push_back(std::move(loop));
+  }
+  tried.insert(tried.end(), keys.begin(), keys.end());
+  std::sort(tried.begin(), tried.end());
+  const std::size_t offered = loops.size();
+  stitch(loops);
+  return offered;
+}
+
 // Closes a hole with the least-area triangulation of its loop. Where every such
 // triangulation would cut through surface triangles around the hole (typically a
 // triangle the walk laid across a sharp edge), those triangles are removed, the hole
@@ -1326,11 +1384,7 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
   std::vector<std::uint8_t> usable = new_diagonal; // minus those through the surface
   // Every fill triangle lies in the loop's bounding box: gather the mesh there once,
   // rather than for each of the O(m^3) candidates, and sift it by bounding boxes.
-  Vector low = points_[loop[0]], high = low;
-  for (const SampleIndex v : loop) {
-    low = low.cwiseMin(points_[v]);
-    high = high.cwiseMax(points_[v]);
-  }
+  const auto [low, high] = boundingBox(loop);
   meshNear(low, high, near_);
   std::vector<std::pair<Vector, Vector> > boxes;
   boxes.reserve(near_.size());
@@ -1853,33 +1907,22 @@ Mesher::run(std::vector<TriangleIndices>& output)
   walkAll();
   resolvePinches();
   lap(timings.walk, "manifold extraction");
-  report_.open_loops = traceLoops();
+  // Every loop gets a turn at stitching, and another only when the mesh changed within
+  // its bounding box since (a loop that stayed open would stay open again): removing
+  // crossings and inserting samples change the mesh, and open holes, and so does
+  // growing a hole over the triangles in the way of its fill (they need not touch it).
+  std::vector<std::vector<SampleIndex> > tried; // vertex sets of the loops offered
   if (parameters_.stitch_holes)
-    stitch(report_.open_loops);
+    stitchLoops(tried);
+  log_changes_ = true;
   insertUnusedSamples();
-  if (removeCrossings() > 0) {
-    report_.open_loops = traceLoops();
-    if (parameters_.stitch_holes)
-      stitch(report_.open_loops);
-  }
-  // Growing a hole to fill it can open others (its blockers need not touch it), and
-  // those were in no list yet: they get their turn, and the report lists the loops
-  // of the mesh as it is.
-  if (parameters_.stitch_holes) {
-    const auto canonical = [](std::vector<SampleIndex> loop) {
-      std::sort(loop.begin(), loop.end());
-      return loop;
-    };
-    std::vector<std::vector<SampleIndex> > known;
-    for (const auto& loop : report_.open_loops)
-      known.push_back(canonical(loop));
-    std::sort(known.begin(), known.end());
-    std::vector<std::vector<SampleIndex> > opened;
-    for (auto& loop : traceLoops())
-      if (!std::binary_search(known.begin(), known.end(), canonical(loop)))
-        opened.push_back(std::move(loop));
-    stitch(opened);
-  }
+  removeCrossings();
+  // The holes opened by this round's growths get one more round; what the last round
+  // opens stays open.
+  if (parameters_.stitch_holes && stitchLoops(tried) > 0)
+    stitchLoops(tried);
+  log_changes_ = false;
+  changed_.clear();
   report_.open_loops = traceLoops();
   lap(timings.stitching, "stitching");
   orientClosedComponentsOutward();
