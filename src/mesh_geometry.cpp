@@ -77,6 +77,39 @@ intersectBeyondSharedFeatures(const Point* p,
   }
 }
 
+/** Whether the corners \a q lie strictly on one side of the plane of the triangle \a t,
+ * where double arithmetic is certain of it. The computed orientation
+ * (t1 - t0) x (t2 - t0) . (q - t0) is off by less than 1e-14 of the product of the
+ * max-norms of its three vectors (each difference of two doubles is rounded once,
+ * relative to itself), so a value beyond 1e-12 of that product has the sign of the
+ * exact one; anything closer is left to the exact predicates. */
+bool
+strictlyOnOneSide(const Eigen::Vector3d* const t[3], const Eigen::Vector3d* const q[3])
+{
+  const auto max_abs = [](double x, double y, double z) {
+    return std::max({std::abs(x), std::abs(y), std::abs(z)});
+  };
+  const Eigen::Vector3d& p = *t[0];
+  const double e1x = (*t[1])[0] - p[0], e1y = (*t[1])[1] - p[1],
+               e1z = (*t[1])[2] - p[2];
+  const double e2x = (*t[2])[0] - p[0], e2y = (*t[2])[1] - p[1],
+               e2z = (*t[2])[2] - p[2];
+  const double nx = e1y * e2z - e1z * e2y, ny = e1z * e2x - e1x * e2z,
+               nz = e1x * e2y - e1y * e2x;
+  const double scale = 1e-12 * max_abs(e1x, e1y, e1z) * max_abs(e2x, e2y, e2z);
+  int sign = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double rx = (*q[k])[0] - p[0], ry = (*q[k])[1] - p[1], rz = (*q[k])[2] - p[2];
+    const double side = nx * rx + ny * ry + nz * rz;
+    const double margin = scale * max_abs(rx, ry, rz);
+    const int here = side > margin ? 1 : side < -margin ? -1 : 0;
+    if (here == 0 || (sign != 0 && here != sign))
+      return false;
+    sign = here;
+  }
+  return true;
+}
+
 Point
 toCgal(const Eigen::Vector3d& p)
 {
@@ -90,17 +123,28 @@ trianglesIntersect(const std::vector<Eigen::Vector3d>& points,
                    const TriangleIndices& a,
                    const TriangleIndices& b)
 {
+  for (int k = 0; k < 3; ++k)
+    if (a[k] >= points.size() || b[k] >= points.size())
+      throw std::out_of_range("triangle vertex index " +
+                              std::to_string(std::max(a[k], b[k])) + " out of range (" +
+                              std::to_string(points.size()) + " points)");
+  const Eigen::Vector3d* const pa[3] = {&points[a[0]], &points[a[1]], &points[a[2]]};
+  const Eigen::Vector3d* const pb[3] = {&points[b[0]], &points[b[1]], &points[b[2]]};
   // Separated bounding boxes: no contact (strict comparison, so touching boxes go on to
   // the exact test).
   for (int axis = 0; axis < 3; ++axis) {
-    const double a0 = points.at(a[0])[axis], a1 = points.at(a[1])[axis],
-                 a2 = points.at(a[2])[axis];
-    const double b0 = points.at(b[0])[axis], b1 = points.at(b[1])[axis],
-                 b2 = points.at(b[2])[axis];
+    const double a0 = (*pa[0])[axis], a1 = (*pa[1])[axis], a2 = (*pa[2])[axis];
+    const double b0 = (*pb[0])[axis], b1 = (*pb[1])[axis], b2 = (*pb[2])[axis];
     if (std::max({a0, a1, a2}) < std::min({b0, b1, b2}) ||
         std::max({b0, b1, b2}) < std::min({a0, a1, a2}))
       return false;
   }
+  // Without a shared vertex, a triangle strictly on one side of the other's plane
+  // cannot meet it: most pairs that pass the boxes end here.
+  if (a[0] != b[0] && a[0] != b[1] && a[0] != b[2] && a[1] != b[0] && a[1] != b[1] &&
+      a[1] != b[2] && a[2] != b[0] && a[2] != b[1] && a[2] != b[2] &&
+      (strictlyOnOneSide(pa, pb) || strictlyOnOneSide(pb, pa)))
+    return false;
   // Local copies, indexed like the points, only for the (at most six) corners used.
   std::array<Point, 6> corners;
   TriangleIndices la{}, lb{};
@@ -111,7 +155,7 @@ trianglesIntersect(const std::vector<Eigen::Vector3d>& points,
       if (global[k] == v)
         return static_cast<std::uint32_t>(k);
     global[used] = v;
-    corners[used] = toCgal(points.at(v));
+    corners[used] = toCgal(points[v]);
     return static_cast<std::uint32_t>(used++);
   };
   for (int k = 0; k < 3; ++k)

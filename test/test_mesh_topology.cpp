@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <random>
 
 namespace {
 
@@ -491,6 +492,49 @@ TEST(MeshChecks, SegmentAgainstTriangle)
   EXPECT_FALSE(pcl::cocone::segmentCrossesTriangle(p, 3, 4, {0, 10, 1})); // no area
   EXPECT_THROW(pcl::cocone::segmentCrossesTriangle(p, 0, 99, {0, 1, 2}),
                std::out_of_range);
+}
+
+// trianglesIntersect decides most pairs in double arithmetic before the exact
+// predicates; countSelfIntersections always asks the exact ones. They must agree, also
+// where a corner lies on the other triangle's plane up to rounding, and far from the
+// origin (geographic coordinates) where the differences carry the rounding.
+TEST(MeshChecks, PairTestAgreesWithTheExactCount)
+{
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  const auto vector = [&] {
+    return Eigen::Vector3d(unit(random), unit(random), unit(random));
+  };
+  std::size_t meeting = 0, pairs = 0;
+  for (const Eigen::Vector3d offset :
+       {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(5e5, 4e6, 120)})
+    for (const double size : {1.0, 1e-3})
+      for (int trial = 0; trial < 3000; ++trial) {
+        Points p(6);
+        for (int k = 0; k < 3; ++k)
+          p[k] = offset + size * vector();
+        // The other triangle: random, or with a corner put on the first one's plane
+        // (exactly there only up to rounding), or sharing a corner with it.
+        for (int k = 3; k < 6; ++k)
+          p[k] = offset + size * vector();
+        const int kind = trial % 3;
+        if (kind == 1) {
+          const double u = 0.5 * (1 + unit(random)),
+                       v = 0.5 * (1 - u) * (1 + unit(random));
+          p[3] = p[0] + u * (p[1] - p[0]) + v * (p[2] - p[0]);
+        }
+        const TriangleIndices first = {0, 1, 2};
+        const TriangleIndices second = {kind == 2 ? 0u : 3u, 4, 5};
+        const bool pair = pcl::cocone::trianglesIntersect(p, first, second);
+        EXPECT_EQ(pair, pcl::cocone::countSelfIntersections(p, {first, second}) == 1)
+            << "offset " << offset.transpose() << ", size " << size << ", trial "
+            << trial;
+        meeting += pair;
+        ++pairs;
+      }
+  // Both outcomes are well represented.
+  EXPECT_GT(meeting, pairs / 10);
+  EXPECT_LT(meeting, pairs * 9 / 10);
 }
 
 TEST(MeshChecks, NonManifoldSoupsAreAccepted)
