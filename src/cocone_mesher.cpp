@@ -1390,7 +1390,8 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
   boxes.reserve(near_.size());
   for (const std::uint32_t u : near_)
     boxes.push_back(boundingBox(oriented_[u]));
-  const auto crosses = [&](const TriangleIndices& t) {
+  const auto crosses = [&](const TriangleIndices& t,
+                           std::vector<std::uint32_t>& crossed) {
     const auto [t_low, t_high] = boundingBox(t);
     bool crossing = false;
     for (std::size_t k = 0; k < near_.size(); ++k) {
@@ -1399,7 +1400,7 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
         continue; // separated boxes (touching ones go on to the exact test)
       if (trianglesIntersect(points_, t, oriented_[near_[k]])) {
         crossing = true;
-        blockers.push_back(near_[k]);
+        crossed.push_back(near_[k]);
       }
     }
     return crossing;
@@ -1475,6 +1476,9 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
       stack.emplace_back(j, k);
     }
   };
+  // What the rounds' tested triangles cross: crossed_by maps a triangle to its range.
+  std::vector<std::uint32_t> crossed;
+  std::unordered_map<std::size_t, std::pair<std::size_t, std::size_t> > crossed_by;
   for (std::size_t round = 0; round < kFillRounds && solve(); ++round) {
     collectFill();
     bool clear = true;
@@ -1482,18 +1486,20 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
       const auto [i, j, k] = chosen[t];
       std::uint8_t& verdict = verdicts_[at(i, j, k)];
       if (verdict == kUntested) {
-        const std::size_t first_blocker = blockers.size();
-        verdict = crosses(fill[t]) ? kCrossing : kClear;
+        const std::size_t first_blocker = crossed.size();
+        verdict = crosses(fill[t], crossed) ? kCrossing : kClear;
         if (verdict == kCrossing) {
+          crossed_by.emplace(at(i, j, k),
+                             std::make_pair(first_blocker, crossed.size()));
           areas_[at(i, j, k)] = infinity;
           // A diagonal through the surface excludes every triangle on it at once; it
           // can only cross what its triangle crosses.
           for (const auto& [from, to] :
                {std::pair{i, j}, std::pair{j, k}, std::pair{i, k}})
             if (to > from + 1 && !(from == 0 && to == m - 1) && usable[from * m + to])
-              for (std::size_t b = first_blocker; b < blockers.size(); ++b)
+              for (std::size_t b = first_blocker; b < crossed.size(); ++b)
                 if (segmentCrossesTriangle(points_, loop[from], loop[to],
-                                           oriented_[blockers[b]])) {
+                                           oriented_[crossed[b]])) {
                   usable[from * m + to] = 0;
                   break;
                 }
@@ -1501,10 +1507,8 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
       }
       clear = clear && verdict == kClear;
     }
-    if (clear) {
-      blockers.clear();
+    if (clear)
       return true;
-    }
   }
 
   // No fill passed in time: the search that tests every candidate it considers, which
@@ -1525,7 +1529,23 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
           continue;
         const TriangleIndices triangle = {loop[j], loop[i], loop[k]};
         const double total = sub + 0.5 * orientedNormal(triangle).norm();
-        if (total < cost[i * m + k] && !crosses(triangle)) {
+        if (!(total < cost[i * m + k]))
+          continue;
+        // A triangle the rounds tested needs no second test: a clear one adds no
+        // blocker, a crossing one what it crossed then.
+        bool crossing;
+        if (verdicts_[at(i, j, k)] == kUntested) {
+          crossing = crosses(triangle, blockers);
+        }
+        else {
+          crossing = verdicts_[at(i, j, k)] == kCrossing;
+          if (crossing) {
+            const auto [from, to] = crossed_by.at(at(i, j, k));
+            blockers.insert(blockers.end(), crossed.begin() + from,
+                            crossed.begin() + to);
+          }
+        }
+        if (!crossing) {
           cost[i * m + k] = total;
           split[i * m + k] = static_cast<std::uint32_t>(j);
         }
