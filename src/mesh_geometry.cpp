@@ -77,14 +77,15 @@ intersectBeyondSharedFeatures(const Point* p,
   }
 }
 
-/** Whether the corners \a q lie strictly on one side of the plane of the triangle \a t,
- * where double arithmetic is certain of it. The computed orientation
- * (t1 - t0) x (t2 - t0) . (q - t0) is off by less than 1e-14 of the product of the
- * max-norms of its three vectors (each difference of two doubles is rounded once,
- * relative to itself), so a value beyond 1e-12 of that product has the sign of the
- * exact one; anything closer is left to the exact predicates. */
+/** Whether the corners of \a q not marked in \a on_t (at least one) lie strictly on one
+ * side of the plane of the triangle \a t, where double arithmetic is certain of it. The
+ * computed orientation (t1 - t0) x (t2 - t0) . (q - t0) is off by less than 1e-14 of
+ * the product of the max-norms of its three vectors (each difference of two doubles is
+ * rounded once, relative to itself), so a value beyond 1e-12 of that product has the
+ * sign of the exact one; anything closer is left to the exact predicates. */
 bool
-strictlyOnOneSide(const Eigen::Vector3d* const t[3], const Eigen::Vector3d* const q[3])
+strictlyOnOneSide(const Eigen::Vector3d* const t[3], const Eigen::Vector3d* const q[3],
+                  const bool on_t[3])
 {
   const auto max_abs = [](double x, double y, double z) {
     return std::max({std::abs(x), std::abs(y), std::abs(z)});
@@ -99,6 +100,8 @@ strictlyOnOneSide(const Eigen::Vector3d* const t[3], const Eigen::Vector3d* cons
   const double scale = 1e-12 * max_abs(e1x, e1y, e1z) * max_abs(e2x, e2y, e2z);
   int sign = 0;
   for (int k = 0; k < 3; ++k) {
+    if (on_t[k])
+      continue;
     const double rx = (*q[k])[0] - p[0], ry = (*q[k])[1] - p[1], rz = (*q[k])[2] - p[2];
     const double side = nx * rx + ny * ry + nz * rz;
     const double margin = scale * max_abs(rx, ry, rz);
@@ -107,7 +110,7 @@ strictlyOnOneSide(const Eigen::Vector3d* const t[3], const Eigen::Vector3d* cons
       return false;
     sign = here;
   }
-  return true;
+  return sign != 0;
 }
 
 Point
@@ -139,11 +142,15 @@ trianglesIntersect(const std::vector<Eigen::Vector3d>& points,
         std::max({b0, b1, b2}) < std::min({a0, a1, a2}))
       return false;
   }
-  // Without a shared vertex, a triangle strictly on one side of the other's plane
-  // cannot meet it: most pairs that pass the boxes end here.
-  if (a[0] != b[0] && a[0] != b[1] && a[0] != b[2] && a[1] != b[0] && a[1] != b[1] &&
-      a[1] != b[2] && a[2] != b[0] && a[2] != b[1] && a[2] != b[2] &&
-      (strictlyOnOneSide(pa, pb) || strictlyOnOneSide(pb, pa)))
+  // If the corners of one that are not corners of the other lie strictly on one side of
+  // the other's plane, they meet at most in their shared vertices or edge (which lie in
+  // that plane): most pairs that pass the boxes end here.
+  bool b_on_a[3], a_on_b[3];
+  for (int k = 0; k < 3; ++k) {
+    b_on_a[k] = b[k] == a[0] || b[k] == a[1] || b[k] == a[2];
+    a_on_b[k] = a[k] == b[0] || a[k] == b[1] || a[k] == b[2];
+  }
+  if (strictlyOnOneSide(pa, pb, b_on_a) || strictlyOnOneSide(pb, pa, a_on_b))
     return false;
   // Local copies, indexed like the points, only for the (at most six) corners used.
   std::array<Point, 6> corners;

@@ -495,9 +495,10 @@ TEST(MeshChecks, SegmentAgainstTriangle)
 }
 
 // trianglesIntersect decides most pairs in double arithmetic before the exact
-// predicates; countSelfIntersections always asks the exact ones. They must agree, also
-// where a corner lies on the other triangle's plane up to rounding, and far from the
-// origin (geographic coordinates) where the differences carry the rounding.
+// predicates; countSelfIntersections always asks the exact ones (16000 pairs). They
+// must agree, also where a corner lies on the other triangle's plane up to rounding or
+// is shared, and far from the origin (geographic coordinates) where the differences
+// carry the rounding.
 TEST(MeshChecks, PairTestAgreesWithTheExactCount)
 {
   std::mt19937 random(7);
@@ -509,22 +510,24 @@ TEST(MeshChecks, PairTestAgreesWithTheExactCount)
   for (const Eigen::Vector3d offset :
        {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(5e5, 4e6, 120)})
     for (const double size : {1.0, 1e-3})
-      for (int trial = 0; trial < 3000; ++trial) {
+      for (int trial = 0; trial < 4000; ++trial) {
         Points p(6);
         for (int k = 0; k < 3; ++k)
           p[k] = offset + size * vector();
         // The other triangle: random, or with a corner put on the first one's plane
-        // (exactly there only up to rounding), or sharing a corner with it.
+        // (exactly there only up to rounding), or sharing a corner or an edge with it.
         for (int k = 3; k < 6; ++k)
           p[k] = offset + size * vector();
-        const int kind = trial % 3;
+        const int kind = trial % 4;
         if (kind == 1) {
           const double u = 0.5 * (1 + unit(random)),
                        v = 0.5 * (1 - u) * (1 + unit(random));
           p[3] = p[0] + u * (p[1] - p[0]) + v * (p[2] - p[0]);
         }
+        if (kind == 3 && trial % 8 == 3) // folded onto the first one's plane, or not
+          p[5] = p[0] + unit(random) * (p[1] - p[0]) + unit(random) * (p[2] - p[0]);
         const TriangleIndices first = {0, 1, 2};
-        const TriangleIndices second = {kind == 2 ? 0u : 3u, 4, 5};
+        const TriangleIndices second = {kind >= 2 ? 0u : 3u, kind == 3 ? 1u : 4u, 5};
         const bool pair = pcl::cocone::trianglesIntersect(p, first, second);
         EXPECT_EQ(pair, pcl::cocone::countSelfIntersections(p, {first, second}) == 1)
             << "offset " << offset.transpose() << ", size " << size << ", trial "
