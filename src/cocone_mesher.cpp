@@ -1728,6 +1728,8 @@ Mesher::removeCrossings()
                                  boundary[o[1]] || boundary[o[2]]))
       suspects.push_back(t);
   }
+  if (suspects.empty())
+    return 0;
 
   // The Delaunay neighbours of every corner, looked up once each (in parallel) rather
   // than once per suspect triangle at it.
@@ -1938,8 +1940,9 @@ Mesher::run(std::vector<TriangleIndices>& output)
   insertUnusedSamples();
   removeCrossings();
   // The holes opened by this round's growths get one more round; what the last round
-  // opens stays open.
-  if (parameters_.stitch_holes && stitchLoops(tried) > 0)
+  // opens stays open. A round after no change would offer nothing.
+  if (parameters_.stitch_holes && !changed_.empty() && stitchLoops(tried) > 0 &&
+      !changed_.empty())
     stitchLoops(tried);
   log_changes_ = false;
   changed_.clear();
