@@ -1409,7 +1409,6 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
   // Each round solves the same problem with more triangles excluded, so the areas are
   // computed once, and laid out so that the inner loop over the split j reads memory
   // in order: area(i, j, k) at (i * m + k) * m + j, cost(j, k) also as cost_to(k, j).
-  // An excluded triangle gets an infinite area.
   const double infinity = std::numeric_limits<double>::infinity();
   const auto at = [m](std::size_t i, std::size_t j, std::size_t k) {
     return (i * m + k) * m + j;
@@ -1417,21 +1416,24 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
   areas_.assign(m * m * m, infinity);
   for (std::size_t i = 0; i < m; ++i)
     for (std::size_t k = i + 2; k < m; ++k)
-      if (usable[i * m + k])
-        for (std::size_t j = i + 1; j < k;
-             ++j) // the fill runs b -> a where the loop runs a -> b
-          areas_[at(i, j, k)] =
-              0.5 * orientedNormal({loop[j], loop[i], loop[k]}).norm();
-  enum : std::uint8_t
-  {
-    kUntested,
-    kClear,
-    kCrossing
-  };
+      if (new_diagonal[i * m + k])
+        for (std::size_t j = i + 1; j < k; ++j) {
+          // The loop runs a -> b as its mesh triangles traverse it; the fill runs b -> a.
+          const TriangleIndices triangle = {loop[j], loop[i], loop[k]};
+          areas_[at(i, j, k)] = 0.5 * orientedNormal(triangle).norm();
+        }
+  enum : std::uint8_t { kUntested, kClear, kCrossing };
   verdicts_.assign(m * m * m, kUntested);
+  // What the tested triangles of the rounds cross: crossed_by maps one to its range.
+  std::vector<std::uint32_t> crossed;
+  std::unordered_map<std::size_t, std::pair<std::size_t, std::size_t> > crossed_by;
   std::vector<double> cost(m * m), cost_to(m * m);
   std::vector<std::uint32_t> split(m * m, 0);
-  const auto solve = [&] {
+  // The least-area fill with the triangles known to cross excluded. The full search
+  // (test_every) tests each candidate that would improve its subproblem, and adds what
+  // it crosses to the blockers; a triangle the rounds tested is not tested again.
+  const auto solve = [&](bool test_every) {
+    const std::vector<std::uint8_t>& diagonals = test_every ? new_diagonal : usable;
     std::fill(cost.begin(), cost.end(), infinity);
     std::fill(cost_to.begin(), cost_to.end(), infinity);
     for (std::size_t i = 0; i + 1 < m; ++i)
@@ -1439,7 +1441,7 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
     for (std::size_t span = 2; span < m; ++span)
       for (std::size_t i = 0; i + span < m; ++i) {
         const std::size_t k = i + span;
-        if (!usable[i * m + k])
+        if (!diagonals[i * m + k])
           continue;
         const double* from_i = &cost[i * m];
         const double* to_k = &cost_to[k * m];
@@ -1448,10 +1450,22 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
         std::size_t best_j = 0;
         for (std::size_t j = i + 1; j < k; ++j) {
           const double total = from_i[j] + to_k[j] + area[j];
-          if (total < best) {
-            best = total;
-            best_j = j;
+          if (!(total < best))
+            continue;
+          const std::uint8_t verdict = verdicts_[at(i, j, k)];
+          if (test_every && verdict == kUntested) {
+            if (crosses({loop[j], loop[i], loop[k]}, blockers))
+              continue;
           }
+          else if (verdict == kCrossing) {
+            if (test_every) {
+              const auto [from, to] = crossed_by.at(at(i, j, k));
+              blockers.insert(blockers.end(), crossed.begin() + from, crossed.begin() + to);
+            }
+            continue;
+          }
+          best = total;
+          best_j = j;
         }
         cost[i * m + k] = cost_to[k * m + i] = best;
         split[i * m + k] = static_cast<std::uint32_t>(best_j);
@@ -1476,84 +1490,46 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
       stack.emplace_back(j, k);
     }
   };
-  // What the rounds' tested triangles cross: crossed_by maps a triangle to its range.
-  std::vector<std::uint32_t> crossed;
-  std::unordered_map<std::size_t, std::pair<std::size_t, std::size_t> > crossed_by;
-  for (std::size_t round = 0; round < kFillRounds && solve(); ++round) {
+
+  for (std::size_t round = 0; round < kFillRounds && solve(false); ++round) {
     collectFill();
     bool clear = true;
     for (std::size_t t = 0; t < chosen.size(); ++t) {
       const auto [i, j, k] = chosen[t];
       std::uint8_t& verdict = verdicts_[at(i, j, k)];
-      if (verdict == kUntested) {
-        const std::size_t first_blocker = crossed.size();
-        verdict = crosses(fill[t], crossed) ? kCrossing : kClear;
-        if (verdict == kCrossing) {
-          crossed_by.emplace(at(i, j, k),
-                             std::make_pair(first_blocker, crossed.size()));
-          areas_[at(i, j, k)] = infinity;
-          // A diagonal through the surface excludes every triangle on it at once; it
-          // can only cross what its triangle crosses.
-          for (const auto& [from, to] :
-               {std::pair{i, j}, std::pair{j, k}, std::pair{i, k}})
-            if (to > from + 1 && !(from == 0 && to == m - 1) && usable[from * m + to])
-              for (std::size_t b = first_blocker; b < crossed.size(); ++b)
-                if (segmentCrossesTriangle(points_, loop[from], loop[to],
-                                           oriented_[crossed[b]])) {
-                  usable[from * m + to] = 0;
-                  break;
-                }
-        }
+      if (verdict != kUntested) {
+        clear = clear && verdict == kClear;
+        continue;
       }
-      clear = clear && verdict == kClear;
+      const std::size_t first = crossed.size();
+      if (!crosses(fill[t], crossed)) {
+        verdict = kClear;
+        continue;
+      }
+      verdict = kCrossing;
+      clear = false;
+      crossed_by.emplace(at(i, j, k), std::make_pair(first, crossed.size()));
+      // A diagonal through the surface excludes every triangle on it at once; it can
+      // only cross what its triangle crosses.
+      for (const auto& [from, to] : {std::pair{i, j}, std::pair{j, k}, std::pair{i, k}})
+        if (to > from + 1 && !(from == 0 && to == m - 1) && usable[from * m + to])
+          for (std::size_t b = first; b < crossed.size(); ++b)
+            if (segmentCrossesTriangle(points_, loop[from], loop[to], oriented_[crossed[b]])) {
+              usable[from * m + to] = 0;
+              break;
+            }
     }
     if (clear)
       return true;
   }
 
-  // No fill passed in time: the search that tests every candidate it considers, which
-  // also names everything those candidates cross, for the caller to grow the hole over.
-  blockers.clear();
+  // No fill passed in time: the full search decides, and names everything the
+  // candidates it considers cross, for the caller to grow the hole over.
   fill.clear();
-  std::fill(cost.begin(), cost.end(), infinity);
-  for (std::size_t i = 0; i + 1 < m; ++i)
-    cost[i * m + i + 1] = 0;
-  for (std::size_t span = 2; span < m; ++span)
-    for (std::size_t i = 0; i + span < m; ++i) {
-      const std::size_t k = i + span;
-      if (!new_diagonal[i * m + k])
-        continue;
-      for (std::size_t j = i + 1; j < k; ++j) {
-        const double sub = cost[i * m + j] + cost[j * m + k];
-        if (!(sub < infinity))
-          continue;
-        const TriangleIndices triangle = {loop[j], loop[i], loop[k]};
-        const double total = sub + 0.5 * orientedNormal(triangle).norm();
-        if (!(total < cost[i * m + k]))
-          continue;
-        // A triangle the rounds tested needs no second test: a clear one adds no
-        // blocker, a crossing one what it crossed then.
-        bool crossing;
-        if (verdicts_[at(i, j, k)] == kUntested) {
-          crossing = crosses(triangle, blockers);
-        }
-        else {
-          crossing = verdicts_[at(i, j, k)] == kCrossing;
-          if (crossing) {
-            const auto [from, to] = crossed_by.at(at(i, j, k));
-            blockers.insert(blockers.end(), crossed.begin() + from,
-                            crossed.begin() + to);
-          }
-        }
-        if (!crossing) {
-          cost[i * m + k] = total;
-          split[i * m + k] = static_cast<std::uint32_t>(j);
-        }
-      }
-    }
+  const bool found = solve(true);
   std::sort(blockers.begin(), blockers.end());
   blockers.erase(std::unique(blockers.begin(), blockers.end()), blockers.end());
-  if (!(cost[m - 1] < infinity))
+  if (!found)
     return false;
   collectFill();
   return true;
