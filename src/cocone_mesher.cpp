@@ -32,6 +32,16 @@ isValid(const ReconstructionParameters& parameters)
 namespace {
 
 using Vector = Eigen::Vector3d;
+using Box = std::pair<Vector, Vector>; // low and high corners
+
+// Whether two boxes are strictly separated along some axis. Touching boxes are not
+// apart: the exact tests count touching as meeting.
+bool
+boxesApart(const Box& a, const Box& b)
+{
+  return (a.second.array() < b.first.array()).any() ||
+         (b.second.array() < a.first.array()).any();
+}
 
 constexpr std::uint32_t kCoconeGroup = 0;
 // Triangles of polygon fills (not Delaunay triangles): never offered to a walk.
@@ -188,12 +198,12 @@ private:
   bool isTrueBoundary(double area, double perimeter, double spacing) const;
   double loopLength(const std::vector<SampleIndex>& loop) const;
   /** Corners of the axis-aligned bounding box of triangle \a t. */
-  std::pair<Vector, Vector> boundingBox(const TriangleIndices& t) const
+  Box boundingBox(const TriangleIndices& t) const
   {
     return {points_[t[0]].cwiseMin(points_[t[1]]).cwiseMin(points_[t[2]]),
             points_[t[0]].cwiseMax(points_[t[1]]).cwiseMax(points_[t[2]])};
   }
-  std::pair<Vector, Vector> boundingBox(const std::vector<SampleIndex>& samples) const
+  Box boundingBox(const std::vector<SampleIndex>& samples) const
   {
     Vector low = points_[samples.front()], high = low;
     for (const SampleIndex v : samples) {
@@ -1089,7 +1099,7 @@ Mesher::stitchLoops(std::vector<std::vector<SampleIndex> >& tried)
   // What changed since the last round, net: a fill tried and undone changes nothing.
   std::stable_sort(changed_.begin(), changed_.end(),
                    [](const auto& x, const auto& y) { return x.first < y.first; });
-  std::vector<std::pair<Vector, Vector> > changed_boxes;
+  std::vector<Box> changed_boxes;
   for (std::size_t k = 0; k < changed_.size(); ++k)
     if ((k == 0 || changed_[k].first != changed_[k - 1].first) &&
         changed_[k].second != (state_[changed_[k].first] == kInMesh))
@@ -1100,12 +1110,9 @@ Mesher::stitchLoops(std::vector<std::vector<SampleIndex> >& tried)
     std::vector<SampleIndex> key = loop;
     std::sort(key.begin(), key.end());
     if (std::binary_search(tried.begin(), tried.end(), key)) {
-      const auto [low, high] = boundingBox(loop);
-      if (std::none_of(changed_boxes.begin(), changed_boxes.end(),
-                       [&](const auto& box) {
-                         return (box.first.array() <= high.array()).all() &&
-                                (low.array() <= box.second.array()).all();
-                       }))
+      const Box loop_box = boundingBox(loop);
+      if (std::all_of(changed_boxes.begin(), changed_boxes.end(),
+                      [&](const Box& box) { return boxesApart(box, loop_box); }))
         continue;
     }
     else {
@@ -1386,18 +1393,17 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
   // rather than for each of the O(m^3) candidates, and sift it by bounding boxes.
   const auto [low, high] = boundingBox(loop);
   meshNear(low, high, near_);
-  std::vector<std::pair<Vector, Vector> > boxes;
+  std::vector<Box> boxes;
   boxes.reserve(near_.size());
   for (const std::uint32_t u : near_)
     boxes.push_back(boundingBox(oriented_[u]));
   const auto crosses = [&](const TriangleIndices& t,
                            std::vector<std::uint32_t>& crossed) {
-    const auto [t_low, t_high] = boundingBox(t);
+    const Box t_box = boundingBox(t);
     bool crossing = false;
     for (std::size_t k = 0; k < near_.size(); ++k) {
-      if ((boxes[k].second.array() < t_low.array()).any() ||
-          (t_high.array() < boxes[k].first.array()).any())
-        continue; // separated boxes (touching ones go on to the exact test)
+      if (boxesApart(boxes[k], t_box))
+        continue;
       if (trianglesIntersect(points_, t, oriented_[near_[k]])) {
         crossing = true;
         crossed.push_back(near_[k]);
@@ -1715,22 +1721,9 @@ Mesher::removeCrossings()
   std::sort(corners.begin(), corners.end());
   corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
   std::vector<std::vector<SampleIndex> > adjacency(corners.size());
-  // The mesh triangles at every sample, as flat lists: the pass below reads only these.
-  std::vector<std::uint32_t> mesh_offsets(n_ + 1, 0), mesh_at;
-  for (std::uint32_t t = 0; t < pool_.size(); ++t)
-    if (state_[t] == kInMesh)
-      for (const SampleIndex v : oriented_[t])
-        ++mesh_offsets[v + 1];
-  for (std::size_t v = 0; v < n_; ++v)
-    mesh_offsets[v + 1] += mesh_offsets[v];
-  mesh_at.resize(mesh_offsets[n_]);
-  {
-    std::vector<std::uint32_t> next(mesh_offsets.begin(), mesh_offsets.end() - 1);
-    for (std::uint32_t t = 0; t < pool_.size(); ++t)
-      if (state_[t] == kInMesh)
-        for (const SampleIndex v : oriented_[t])
-          mesh_at[next[v]++] = t;
-  }
+  // Stitching added many triangles since the incidence lists were built; with them
+  // rebuilt, the pass below reads flat lists instead of looking up late additions.
+  rebuildIncidence();
 
   // Every crossing pair (suspect, mesh triangle), found in parallel without changing
   // anything; the mesh triangles that can reach t are those at its corners and at
@@ -1751,22 +1744,20 @@ Mesher::removeCrossings()
       const std::uint32_t stamp = static_cast<std::uint32_t>(i);
       const std::uint32_t t = suspects[i];
       const TriangleIndices& o = oriented_[t];
-      const auto [low, high] = boundingBox(o);
+      const Box box = boundingBox(o);
       triangle_stamp[t] = stamp;
       const auto visit = [&](SampleIndex v) {
         if (sample_stamp[v] == stamp)
           return;
         sample_stamp[v] = stamp;
-        for (std::uint32_t k = mesh_offsets[v]; k < mesh_offsets[v + 1]; ++k) {
-          const std::uint32_t u = mesh_at[k];
-          if (triangle_stamp[u] == stamp)
+        for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1]; ++k) {
+          const std::uint32_t u = incidence_[k].triangle;
+          if (state_[u] != kInMesh || triangle_stamp[u] == stamp)
             continue;
           triangle_stamp[u] = stamp;
           // Most are apart, which their boxes tell without the call (the exact test
           // starts with the same strict comparison).
-          const auto [u_low, u_high] = boundingBox(oriented_[u]);
-          if ((u_high.array() < low.array()).any() ||
-              (high.array() < u_low.array()).any())
+          if (boxesApart(boundingBox(oriented_[u]), box))
             continue;
           if (trianglesIntersect(points_, o, oriented_[u]))
             crossing[i].push_back(u);
