@@ -2,11 +2,13 @@
 #include <pcl/cocone/boundary_samples.h>
 #include <pcl/cocone/parameters.h>
 
+#include "cocone_links.h"
 #include "parallel.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -23,37 +25,10 @@ isValid(const BoundaryParameters& parameters)
          kBandRingsRange.contains(parameters.band_rings);
 }
 
+using detail::forEachCoconeLink;
+using detail::forEachTriangleNeighbour;
+
 namespace {
-
-/** Calls visit(q, p_marks, q_marks) for each other vertex q of every marked triangle
- * at p (with repeats), saying whether p's cocone and q's cocone mark that triangle. */
-template <typename Visit>
-void
-forEachTriangleNeighbour(const VoronoiCocone& voronoi, SampleIndex p, Visit&& visit)
-{
-  const std::vector<MarkedTriangle>& triangles = voronoi.markedTriangles();
-  for (const std::uint32_t t : voronoi.trianglesAround(p)) {
-    const MarkedTriangle& triangle = triangles[t];
-    int self = 0;
-    while (triangle.vertex[self] != p)
-      ++self;
-    for (int k = 0; k < 3; ++k)
-      if (k != self)
-        visit(triangle.vertex[k], triangle.isMarkedBy(self), triangle.isMarkedBy(k));
-  }
-}
-
-/** The cocone-neighbour graph made symmetric: p and q are linked when one's cocone
- * meets the other's cell. Calls visit(q) for each such q of p (with repeats). */
-template <typename Visit>
-void
-forEachCoconeLink(const VoronoiCocone& voronoi, SampleIndex p, Visit&& visit)
-{
-  forEachTriangleNeighbour(voronoi, p, [&](SampleIndex q, bool p_marks, bool q_marks) {
-    if (p_marks || q_marks)
-      visit(q);
-  });
-}
 
 /** The samples q whose cocone meets V_p (p in N_q). Calls visit(q) for each (with
  * repeats). */
@@ -65,60 +40,6 @@ forEachMarker(const VoronoiCocone& voronoi, SampleIndex p, Visit&& visit)
     if (q_marks)
       visit(q);
   });
-}
-
-/** Links longer than this many times the median link of a sample are not its surface
- * neighbours: across a hole, the cocone of a rim sample meets cells on the other side.
- * The results hardly depend on it (2 to 3.5 gave the same flags within 0.1% on the
- * benchmark's open surfaces). */
-constexpr double kFarLink = 2.5;
-
-/** A sample is on the rim when its nearby links leave a gap wider than this in its
- * tangent plane. Around an interior sample the links are the vertices of its umbrella,
- * whose angles at the sample stay below 2 pi / 3 on a good sample; a rim sample sees
- * a gap of about pi. Measured on the benchmark's open surfaces: pi/2 flags the second
- * row too (precision in the row 0.54-0.59), 2.3 misses a tenth of the row (recall
- * 0.87-0.92), 2 pi / 3 finds 0.94-0.96 of it at precision 0.99-1.0. */
-constexpr double kRimGapAngle = 2 * M_PI / 3;
-
-/** The largest angle between consecutive directions from p to its nearby cocone links,
- * measured in p's tangent plane (the plane normal to its pole vector); 2 pi when fewer
- * than two links remain. \a links and \a scratch are reused buffers. */
-double
-largestTangentGap(const VoronoiCocone& voronoi, SampleIndex p,
-                  std::vector<SampleIndex>& links, std::vector<double>& scratch)
-{
-  links.clear();
-  forEachCoconeLink(voronoi, p, [&](SampleIndex q) { links.push_back(q); });
-  std::sort(links.begin(), links.end());
-  links.erase(std::unique(links.begin(), links.end()), links.end());
-  const std::vector<Eigen::Vector3d>& points = voronoi.centeredPoints();
-  const Eigen::Vector3d& origin = points[p];
-  scratch.clear();
-  for (const SampleIndex q : links)
-    scratch.push_back((points[q] - origin).squaredNorm());
-  if (scratch.size() < 2)
-    return 2 * M_PI;
-  std::nth_element(scratch.begin(), scratch.begin() + scratch.size() / 2,
-                   scratch.end());
-  const double limit = kFarLink * kFarLink * scratch[scratch.size() / 2];
-
-  const Eigen::Vector3d& normal = voronoi.poleVector(p);
-  const Eigen::Vector3d u = normal.unitOrthogonal();
-  const Eigen::Vector3d w = normal.cross(u);
-  scratch.clear();
-  for (const SampleIndex q : links) {
-    const Eigen::Vector3d d = points[q] - origin;
-    if (d.squaredNorm() <= limit)
-      scratch.push_back(std::atan2(d.dot(w), d.dot(u)));
-  }
-  if (scratch.size() < 2)
-    return 2 * M_PI;
-  std::sort(scratch.begin(), scratch.end());
-  double gap = scratch.front() + 2 * M_PI - scratch.back();
-  for (std::size_t k = 1; k < scratch.size(); ++k)
-    gap = std::max(gap, scratch[k] - scratch[k - 1]);
-  return gap;
 }
 
 /** Beyond the paper: BOUNDARY flags only part of the outermost row, because a rim
@@ -145,7 +66,9 @@ completeRimRow(const VoronoiCocone& voronoi, std::vector<std::uint8_t>& is_bound
       if (tested[p])
         continue;
       tested[p] = 1;
-      if (largestTangentGap(voronoi, p, links, scratch) > kRimGapAngle) {
+      if (detail::widestTangentGap(voronoi, p, detail::TangentPlane::pole_vector, links,
+                                   scratch)
+              .angle > detail::kRimGapAngle) {
         is_boundary[p] = 1;
         queue.push_back(p);
       }
@@ -252,6 +175,80 @@ detectBoundarySamples(const VoronoiCocone& voronoi,
   }
   return count;
 }
+
+namespace detail {
+
+namespace {
+
+/** Links longer than this many times the median link of a sample are not its surface
+ * neighbours: across a hole, the cocone of a rim sample meets cells on the other side.
+ * The results hardly depend on it (2 to 3.5 gave the same flags within 0.1% on the
+ * benchmark's open surfaces). */
+constexpr double kFarLink = 2.5;
+
+} // namespace
+
+TangentGap
+widestTangentGap(const VoronoiCocone& voronoi, SampleIndex p, TangentPlane plane,
+                 std::vector<SampleIndex>& links, std::vector<double>& scratch)
+{
+  TangentGap result;
+  result.normal = voronoi.poleVector(p);
+  result.direction.setZero();
+  links.clear();
+  forEachCoconeLink(voronoi, p, [&](SampleIndex q) { links.push_back(q); });
+  std::sort(links.begin(), links.end());
+  links.erase(std::unique(links.begin(), links.end()), links.end());
+  const std::vector<Eigen::Vector3d>& points = voronoi.centeredPoints();
+  const Eigen::Vector3d& origin = points[p];
+  scratch.clear();
+  for (const SampleIndex q : links)
+    scratch.push_back((points[q] - origin).squaredNorm());
+  if (scratch.size() < 2)
+    return result;
+  std::nth_element(scratch.begin(), scratch.begin() + scratch.size() / 2,
+                   scratch.end());
+  const double limit = kFarLink * kFarLink * scratch[scratch.size() / 2];
+
+  if (plane == TangentPlane::fitted) {
+    Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+    for (const SampleIndex q : links) {
+      const Eigen::Vector3d d = points[q] - origin;
+      if (d.squaredNorm() <= limit)
+        scatter += d * d.transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+    solver.computeDirect(scatter);
+    result.normal = solver.eigenvectors().col(0); // smallest eigenvalue first
+    const Eigen::Vector3d& spread = solver.eigenvalues();
+    result.thickness = spread[1] > 0 ? spread[0] / spread[1] : 1;
+  }
+  const Eigen::Vector3d& normal = result.normal;
+  const Eigen::Vector3d u = normal.unitOrthogonal();
+  const Eigen::Vector3d w = normal.cross(u);
+  scratch.clear();
+  for (const SampleIndex q : links) {
+    const Eigen::Vector3d d = points[q] - origin;
+    if (d.squaredNorm() <= limit)
+      scratch.push_back(std::atan2(d.dot(w), d.dot(u)));
+  }
+  if (scratch.size() < 2)
+    return result;
+  std::sort(scratch.begin(), scratch.end());
+  // The gap that wraps around from the last direction to the first, then the others.
+  result.angle = scratch.front() + 2 * M_PI - scratch.back();
+  double gap_start = scratch.back();
+  for (std::size_t k = 1; k < scratch.size(); ++k)
+    if (scratch[k] - scratch[k - 1] > result.angle) {
+      result.angle = scratch[k] - scratch[k - 1];
+      gap_start = scratch[k - 1];
+    }
+  const double middle = gap_start + result.angle / 2;
+  result.direction = std::cos(middle) * u + std::sin(middle) * w;
+  return result;
+}
+
+} // namespace detail
 
 } // namespace cocone
 } // namespace pcl
