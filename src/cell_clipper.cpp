@@ -244,45 +244,44 @@ CoconeCellClipper::measureRadius(const Eigen::Vector3d& axis,
 }
 
 void
-CoconeCellClipper::clipBox(const Eigen::Vector3d& axis,
-                           double half_width,
+CoconeCellClipper::clipBox(const Eigen::Vector3d& axis, double half_width,
                            double half_height,
                            const std::vector<Eigen::Vector3d>& offsets,
-                           std::vector<int>* neighbours)
+                           std::vector<int>* neighbours, const Eigen::Vector3d* cut)
 {
   resetToBox(axis, half_width, half_height);
+  if (cut)
+    clip(*cut, 0, kCutPlane);
   clipAll(offsets);
   if (neighbours) {
     neighbours->clear();
     for (const Face& face : faces_)
-      if (face.plane >= 0)
+      if (face.plane >= 0 && face.plane != kCutPlane)
         neighbours->push_back(face.plane);
   }
 }
 
 CoconeCellClipper::Result
-CoconeCellClipper::coconeRadius(const Eigen::Vector3d& axis,
-                                double sin_theta,
-                                double limit,
-                                double margin,
+CoconeCellClipper::coconeRadius(const Eigen::Vector3d& axis, double sin_theta,
+                                double limit, double margin,
                                 const std::vector<Eigen::Vector3d>& offsets,
-                                std::vector<int>* neighbours)
+                                std::vector<int>* neighbours,
+                                const Eigen::Vector3d* cut)
 {
   // Every point of the cocone closer than `limit` lies in this box: |y.axis| <=
   // sin(theta) |y| <= sin(theta) limit.
   const double half_width = std::max(1.0, margin) * limit;
-  clipBox(axis, half_width, half_width * sin_theta * (1 + 1e-9), offsets, neighbours);
+  clipBox(axis, half_width, half_width * sin_theta * (1 + 1e-9), offsets, neighbours,
+          cut);
   return measureRadius(axis, sin_theta, limit);
 }
 
 CoconeCellClipper::Result
-CoconeCellClipper::fullCell(const Eigen::Vector3d& axis,
-                            double sin_theta,
-                            double extent,
-                            const std::vector<Eigen::Vector3d>& offsets,
-                            std::vector<int>& neighbours)
+CoconeCellClipper::fullCell(const Eigen::Vector3d& axis, double sin_theta,
+                            double extent, const std::vector<Eigen::Vector3d>& offsets,
+                            std::vector<int>& neighbours, const Eigen::Vector3d* cut)
 {
-  clipBox(axis, extent, extent, offsets, &neighbours);
+  clipBox(axis, extent, extent, offsets, &neighbours, cut);
   // The cube is no cocone-shaped box: an edge reaching it is a ray to infinity, and a
   // cocone point on it lies at least `extent` away.
   return measureRadius(axis, sin_theta, extent);

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace pcl {
@@ -39,19 +40,24 @@ public:
    * \param offsets positions of a superset of the Voronoi neighbours, relative to the
    *        sample (no zero vector)
    * \param[out] neighbours if given: the indices into \a offsets whose bisector bounds
-   *             the cell inside the box */
+   *             the cell inside the box
+   * \param cut if given: the cell is also cut by the plane through the sample normal
+   *        to *cut, keeping the side y.cut <= 0, and the edges of that cut count as
+   *        Voronoi edges (a rim sample measured on the side where the surface is) */
   Result
   coconeRadius(const Eigen::Vector3d& axis,
                double sin_theta,
                double limit,
                double margin,
                const std::vector<Eigen::Vector3d>& offsets,
-               std::vector<int>* neighbours = nullptr);
+               std::vector<int>* neighbours = nullptr,
+               const Eigen::Vector3d* cut = nullptr);
 
   /** The whole Voronoi cell of the sample at the origin, inside a cube of half size
    * \a extent (far larger than the data: what lies beyond is "at infinity").
    * \param[out] neighbours the indices into \a offsets whose bisector bounds the cell:
    *             its Delaunay neighbours among \a offsets
+   * \param cut as for coconeRadius
    * \return the cocone radius; reached_limit when the cocone reaches the cube (an
    *         unbounded cocone) */
   Result
@@ -59,7 +65,8 @@ public:
            double sin_theta,
            double extent,
            const std::vector<Eigen::Vector3d>& offsets,
-           std::vector<int>& neighbours);
+           std::vector<int>& neighbours,
+           const Eigen::Vector3d* cut = nullptr);
 
 private:
   void
@@ -71,9 +78,14 @@ private:
           double half_width,
           double half_height,
           const std::vector<Eigen::Vector3d>& offsets,
-          std::vector<int>* neighbours);
+          std::vector<int>* neighbours,
+          const Eigen::Vector3d* cut);
   Result
   measureRadius(const Eigen::Vector3d& axis, double sin_theta, double limit) const;
+
+  /** Plane index of the cut: above every offset index, so that its edges with
+   * bisector faces are visited from the bisector side like any Voronoi edge. */
+  static constexpr int kCutPlane = std::numeric_limits<int>::max();
 
   struct Corner
   {

@@ -636,6 +636,24 @@ TEST_F(Tools, DecimationRemovesMoreWithLargerRhoAndNeverKeepsNan)
     EXPECT_FALSE(std::isnan(valueAt<float>(a, i, *x)));
 }
 
+// By default the rim of an open surface is thinned like the rest; -keep_rims gives
+// DECIMATE as published, which keeps the outermost row, so it keeps more points.
+TEST_F(Tools, DecimationKeepRimsKeepsMoreOfAnOpenSurface)
+{
+  const fs::path thinned = path("hemisphere_thinned.pcd"),
+                 kept = path("hemisphere_rims.pcd");
+  const ToolRun r =
+      run(kDecimation, {path("hemisphere.xyz").string(), thinned.string(), "-v"});
+  expectSuccess(r);
+  EXPECT_NE(r.out.find("rims thinned"), std::string::npos) << r.out;
+  const ToolRun k = run(kDecimation, {path("hemisphere.xyz").string(), kept.string(),
+                                      "-keep_rims", "-v"});
+  expectSuccess(k);
+  EXPECT_NE(k.out.find("rims kept"), std::string::npos) << k.out;
+  const pcl::PCLPointCloud2 with_rims = loadCloud(kept), without = loadCloud(thinned);
+  EXPECT_GT(rows(with_rims), rows(without) + 10) << r.out << k.out;
+}
+
 TEST_F(Tools, FileNamesWithSpacesWork)
 {
   fs::copy_file(path("sphere.xyz"), path("my sphere.xyz"),

@@ -820,6 +820,84 @@ reconstruct(const Cloud::Ptr& cloud, const std::string& label, bool check)
   return mesh;
 }
 
+// =================================================================================
+// Rims (beyond the paper: setThinRims)
+
+/** Decimates \a cloud at \a rho, rims thinned or kept. */
+pcl::Indices
+decimateRims(const Cloud::ConstPtr& cloud, double rho, bool thin_rims)
+{
+  Decimation decimation;
+  decimation.setInputCloud(cloud);
+  decimation.setRatioBound(rho);
+  decimation.setThinRims(thin_rims);
+  pcl::Indices kept;
+  decimation.filter(kept);
+  EXPECT_TRUE(decimation.getErrorMessage().empty()) << decimation.getErrorMessage();
+  return kept;
+}
+
+// DECIMATE as published never thins the outermost row of an open surface: the cocone
+// of a rim sample runs on past the rim. Thinned rims end about as dense as the rest,
+// and the kept points still give a valid surface with the true boundary loops.
+TEST(VoronoiDecimation, RimsAreThinnedLikeTheRestOfTheSurface)
+{
+  for (const SampledShape& shape :
+       {sampleHemisphere(6000, 61), sampleOpenCylinder(6000, 62),
+        sampleMonkeySaddle(6000, 63)}) {
+    const Cloud::Ptr cloud = toCloud(shape.points);
+    const double row = 0.5 * shape.spacing();
+    std::vector<bool> on_rim(cloud->size());
+    std::size_t rim_before = 0;
+    for (std::size_t i = 0; i < cloud->size(); ++i) {
+      on_rim[i] = shape.distance_to_rim(shape.points[i]) < row;
+      rim_before += on_rim[i];
+    }
+    ASSERT_GT(rim_before, 50u) << shape.name;
+    const std::size_t rest_before = cloud->size() - rim_before;
+    for (const bool thin : {false, true}) {
+      const pcl::Indices kept = decimateRims(cloud, 0.3, thin);
+      std::size_t rim_after = 0;
+      for (const pcl::index_t i : kept)
+        rim_after += on_rim[static_cast<std::size_t>(i)];
+      const double rim_kept = static_cast<double>(rim_after) / rim_before;
+      const double rest_kept =
+          static_cast<double>(kept.size() - rim_after) / rest_before;
+      std::cout << "[ measured ] " << shape.name << " 6000 at rho 0.3, rims "
+                << (thin ? "thinned" : "kept") << ": " << kept.size()
+                << " kept; rim row " << rim_before << " -> " << rim_after << " ("
+                << 100 * rim_kept << "% kept), the rest " << 100 * rest_kept << "% kept"
+                << std::endl;
+      if (!thin) {
+        EXPECT_GT(rim_kept, 0.6) << shape.name;
+        EXPECT_GT(rim_kept, 8 * rest_kept) << shape.name;
+        continue;
+      }
+      // A row thinned like the surface keeps about as many samples per length as the
+      // surface keeps per spacing: rest_kept^(1/2) of them.
+      EXPECT_LT(rim_kept, 2 * std::sqrt(rest_kept)) << shape.name;
+      EXPECT_LT(rim_kept, 0.5) << shape.name;
+      const Mesh mesh =
+          reconstruct(subCloud(*cloud, kept), shape.name + " thinned", true);
+      EXPECT_TRUE(mesh.topology.isManifold()) << shape.name;
+      EXPECT_EQ(mesh.topology.boundary_loops.size(),
+                static_cast<std::size_t>(shape.boundary_loops))
+          << shape.name;
+    }
+  }
+}
+
+// A closed surface has no rim: thinning rims changes nothing.
+TEST(VoronoiDecimation, ClosedSurfacesDoNotDependOnThinRims)
+{
+  for (const SampledShape& shape : {sampleSphere(3000, 64), sampleTorus(3000, 65)}) {
+    const Cloud::Ptr cloud = toCloud(shape.points);
+    for (const double rho : {0.3, 0.4})
+      EXPECT_EQ(decimateRims(cloud, rho, true), decimateRims(cloud, rho, false))
+          << shape.name << " at rho " << rho;
+  }
+}
+
 /** Finds by bisection (on a log scale) the parameter at which \a run keeps about
  * \a target points (within 2%); \a run's count decreases as the parameter grows. */
 double

@@ -33,8 +33,10 @@ commandLine()
       {ratioBoundOption(0.3, "samples with r_p/h_p below R are removed, smallest "
                              "first; useful range 0.25 to 0.4, larger removes more"),
        coconeAngleOption(),
-       threadsOption(),
-       verboseOption()});
+       flagOption("-keep_rims",
+                  "DECIMATE as published: keep the outermost row of an open surface at "
+                  "its input density (by default rims are thinned like the rest)"),
+       threadsOption(), verboseOption()});
 }
 
 pcl::Indices
@@ -44,11 +46,13 @@ decimate(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLine&
   decimation.setInputCloud(xyz);
   decimation.setRatioBound(cmd.value("-rho"));
   decimation.setCoconeAngle(cmd.value("-theta"));
+  decimation.setThinRims(!cmd.flag("-keep_rims"));
   decimation.setNumberOfThreads(cmd.count("-threads"));
   if (cmd.verbose())
-    printDetail("Parameters", "rho " + formatNumber(decimation.getRatioBound()) +
-                                  ", theta " +
-                                  formatNumber(decimation.getCoconeAngle()) + " rad");
+    printDetail("Parameters",
+                "rho " + formatNumber(decimation.getRatioBound()) + ", theta " +
+                    formatNumber(decimation.getCoconeAngle()) + " rad, rims " +
+                    (decimation.getThinRims() ? "thinned" : "kept"));
 
   pcl::Indices kept;
   computeStage("the decimation", "points kept",

@@ -380,6 +380,12 @@ public:
    * \param[in] progress optional callback, called with the share done in [0, 1] every
    *            1024 removals and with 1 at the end; returning false cancels
    *            (Status::internal_error, errorMessage() "cancelled")
+   * \param[in] thin_rims beyond the paper: a rim sample (flagged by BOUNDARY with
+   *            default parameters, its cocone neighbours leaving a gap wider than
+   *            2 pi / 3 in the plane fitted to them) is measured on its Voronoi cell cut
+   *            by the plane through it across that gap, in a cocone of angle theta / 2
+   *            around the fitted plane, so that open surfaces are thinned up to their
+   *            rims; false: DECIMATE as published, which keeps rims dense
    * \return Status::ok; Status::not_computed without a successful compute() or after
    *         an earlier decimate(); Status::invalid_parameter for a bad \a rho;
    *         Status::internal_error when cancelled or out of memory (see
@@ -387,7 +393,8 @@ public:
   Status
   decimate(double rho,
            DecimationLevels& levels,
-           const std::function<bool(double)>& progress = nullptr);
+           const std::function<bool(double)>& progress = nullptr,
+           bool thin_rims = true);
 
   /** \brief Opaque implementation (CGAL lives there). */
   struct Impl;

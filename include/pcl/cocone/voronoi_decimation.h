@@ -28,6 +28,12 @@ namespace pcl {
  * shape). The kept points are original points, never moved; the result is the same on
  * every run.
  *
+ * Rims (beyond the paper, on by default, setThinRims): the cocone of a sample on the
+ * rim of an open surface runs on past the last samples, so DECIMATE as published never
+ * thins the outermost row (on a 10k monkey saddle at rho 0.4, 300 of the 381 kept
+ * samples were on the rim). Rim samples are therefore measured only on the side where
+ * the surface is, and the rim is thinned like the rest.
+ *
  * Levels of detail: the removals of a run up to rho contain those of every smaller
  * rho, in the same order, so one run gives nested subsets for several values
  * (computeLevelsOfDetail, getRemovalLevels).
@@ -86,6 +92,26 @@ public:
   getCoconeAngle() const
   {
     return cocone_angle_;
+  }
+
+  /** \brief Beyond the paper: measure each sample on the rim of an open surface
+   * (flagged by BOUNDARY, with its cocone neighbours on one side in its tangent plane)
+   * on the side of its Voronoi cell where the surface is, so that rims are thinned like
+   * the rest of the surface. False gives DECIMATE as published, which keeps the
+   * outermost row of an open surface at its input density. Closed surfaces have no
+   * rim: their result does not depend on it.
+   * \param[in] thin whether rims are thinned; default true; either value is valid */
+  void
+  setThinRims(bool thin)
+  {
+    thin_rims_ = thin;
+  }
+  /** \brief Get whether rims are thinned (see setThinRims).
+   * \return true (default) when rim samples are measured on the surface side only */
+  bool
+  getThinRims() const
+  {
+    return thin_rims_;
   }
 
   /** \brief Number of threads for the per-sample work; 0 (default) uses every core.
@@ -161,6 +187,7 @@ private:
 
   double ratio_bound_ = 0.3;
   double cocone_angle_ = M_PI / 8;
+  bool thin_rims_ = true;
   unsigned threads_ = 0;
   std::vector<double> removal_levels_;
   std::string error_message_;

@@ -45,7 +45,7 @@ VoronoiDecimation<PointT>::decimate(double rho)
   voronoi.setNumberOfThreads(threads_);
   cocone::DecimationLevels levels;
   if (voronoi.compute(samples) != cocone::Status::ok ||
-      voronoi.decimate(rho, levels) != cocone::Status::ok) {
+      voronoi.decimate(rho, levels, nullptr, thin_rims_) != cocone::Status::ok) {
     error_message_ = voronoi.errorMessage();
     PCL_ERROR("[pcl::%s::filter] %s.\n", getClassName().c_str(), error_message_.c_str());
     return false;
