@@ -222,8 +222,14 @@ main(int argc, char** argv)
       options.timeout = std::stod(value());
     else if (arg == "--ours-only")
       options.no_peers = true;
-    else if (arg == "--large")
-      options.large = static_cast<std::size_t>(std::stod(value()));
+    else if (arg == "--large") {
+      const double large = std::stod(value());
+      if (!(large >= 1000 && large <= 1e8)) {
+        std::cerr << "pcl_cocone_benchmark: --large must be between 1000 and 1e8\n";
+        return 1;
+      }
+      options.large = static_cast<std::size_t>(large);
+    }
     else if (arg == "--help" || arg == "-h") {
       usage(std::cout);
       return 0;
