@@ -208,6 +208,18 @@ main(int argc, char** argv)
       }
       return argv[++i];
     };
+    // A number in [low, high], or a one-line reason and exit status 1.
+    const auto number = [&](double low, double high) -> double {
+      const std::string text = value();
+      char* end = nullptr;
+      const double parsed = std::strtod(text.c_str(), &end);
+      if (text.empty() || *end != '\0' || !(parsed >= low && parsed <= high)) {
+        std::cerr << "pcl_cocone_benchmark: " << arg << " needs a number from " << low
+                  << " to " << high << ", not '" << text << "'\n";
+        std::exit(1);
+      }
+      return parsed;
+    };
     if (arg == "--quick")
       options.quick = true;
     else if (arg == "--data")
@@ -219,17 +231,11 @@ main(int argc, char** argv)
     else if (arg == "--filter")
       options.filter = value();
     else if (arg == "--timeout")
-      options.timeout = std::stod(value());
+      options.timeout = number(1, 1e6);
     else if (arg == "--ours-only")
       options.no_peers = true;
-    else if (arg == "--large") {
-      const double large = std::stod(value());
-      if (!(large >= 1000 && large <= 1e8)) {
-        std::cerr << "pcl_cocone_benchmark: --large must be between 1000 and 1e8\n";
-        return 1;
-      }
-      options.large = static_cast<std::size_t>(large);
-    }
+    else if (arg == "--large")
+      options.large = static_cast<std::size_t>(number(1000, 1e8));
     else if (arg == "--help" || arg == "-h") {
       usage(std::cout);
       return 0;
