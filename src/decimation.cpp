@@ -99,10 +99,10 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
 
   // Beyond the paper (thin_rims): r_p stands for how far the surface that p represents
   // reaches, but at a rim the cocone runs on past the last samples, where there is no
-  // surface, so DECIMATE as published keeps every rim sample: on the 10k monkey saddle
-  // at rho 0.4, 300 of the 381 kept samples were the outermost row. A rim sample
-  // (BOUNDARY's flag, a gap wider than kRimGapAngle between its cocone links, links
-  // near one plane) is instead measured on its cell cut by the plane through it
+  // surface, so DECIMATE as published keeps nearly every rim sample: on the 10k monkey
+  // saddle at rho 0.4, 252 of the 270 in the outermost row (and 381 in all). A rim
+  // sample (BOUNDARY's flag, a gap wider than kRimGapAngle between its cocone links,
+  // links near one plane) is instead measured on its cell cut by the plane through it
   // across the gap, in a cocone around the plane of its links, since its pole vector
   // may run out through the gap. The cut and the plane are fixed, like h_p and v_p.
   // That cocone is half as wide (theta / 2): the cut cell is still unbounded towards
