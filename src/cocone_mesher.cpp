@@ -1380,8 +1380,17 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
   const std::size_t m = loop.size();
   if (m < 3)
     return false;
-  std::vector<std::uint8_t> new_diagonal(m * m, 1);
   std::vector<std::uint32_t> on_edge;
+  if (m == 3) {
+    // The loop of a lone triangle: its only fill is the same triangle again, which
+    // would make a two-sided, zero-volume component. (A longer loop's fill triangles
+    // each have a new diagonal, so none of them can be a mesh triangle.)
+    meshOnEdge(loop[0], loop[1], on_edge);
+    for (const std::uint32_t u : on_edge)
+      if (contains(u, loop[2]))
+        return false;
+  }
+  std::vector<std::uint8_t> new_diagonal(m * m, 1);
   for (std::size_t i = 0; i < m; ++i)
     for (std::size_t k = i + 2; k < m; ++k)
       if (!(i == 0 && k == m - 1)) { // loop edges are usable; diagonals must be new
