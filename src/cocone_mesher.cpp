@@ -43,6 +43,9 @@ boxesApart(const Box& a, const Box& b)
          (b.second.array() < a.first.array()).any();
 }
 
+// See Mesher::large_.
+constexpr double kMostGridCells = 64;
+
 constexpr std::uint32_t kCoconeGroup = 0;
 // Triangles of polygon fills (not Delaunay triangles): never offered to a walk.
 constexpr std::uint32_t kPolygonGroup = std::numeric_limits<std::uint32_t>::max();
@@ -224,6 +227,7 @@ private:
   void undo(const std::vector<std::uint32_t>& added);
   bool intersectsSurface(const std::vector<std::uint32_t>& added);
   template <typename F> void forEachCell(const Vector& low, const Vector& high, F&& f) const;
+  double cellCount(const Vector& low, const Vector& high) const;
   void gridInsert(std::uint32_t t);
   void meshNear(const Vector& low, const Vector& high, std::vector<std::uint32_t>& nearby);
   void meshNear(const TriangleIndices& t, std::vector<std::uint32_t>& nearby);
@@ -284,8 +288,13 @@ private:
   // checks that added triangles cross nothing (a fill across a hole can meet a part
   // of the surface that is near in space but far along it). Triangles added later are
   // entered as they come; removed ones stay listed and are skipped by state.
+  // A triangle that would span more than kMostGridCells cells (a fill across a wide
+  // hole, or the sparse background of a depth image, where triangles are far longer
+  // than the mean) is kept in large_ instead, and every query looks at it: on PCL's
+  // stereo table scene some 900 of them spanned up to 150 000 cells each.
   using CellKey = std::uint64_t;
   std::unordered_map<CellKey, std::vector<std::uint32_t> > grid_;
+  std::vector<std::uint32_t> large_;
   double grid_cell_ = 0;
   std::unordered_map<SampleIndex, std::vector<std::uint32_t> > late_; // added since
   std::vector<std::uint32_t> mesh_degree_; // mesh triangles at each sample
@@ -1284,10 +1293,25 @@ Mesher::forEachCell(const Vector& low, const Vector& high, F&& f) const
           static_cast<CellKey>(z & 0x1FFFFF));
 }
 
+// The number of grid cells the box [low, high] meets (a double: it can be huge).
+double
+Mesher::cellCount(const Vector& low, const Vector& high) const
+{
+  double count = 1;
+  for (int axis = 0; axis < 3; ++axis)
+    count *=
+        std::floor(high[axis] / grid_cell_) - std::floor(low[axis] / grid_cell_) + 1;
+  return count;
+}
+
 void
 Mesher::gridInsert(std::uint32_t t)
 {
   const auto [low, high] = boundingBox(oriented_[t]);
+  if (cellCount(low, high) > kMostGridCells) {
+    large_.push_back(t);
+    return;
+  }
   forEachCell(low, high, [&](CellKey key) { grid_[key].push_back(t); });
 }
 
@@ -1299,7 +1323,10 @@ Mesher::meshNear(const TriangleIndices& t, std::vector<std::uint32_t>& nearby)
   meshNear(low, high, nearby);
 }
 
-// Mesh triangles whose grid cells meet those of the box [low, high].
+// Mesh triangles whose grid cells meet those of the box [low, high], or whose own box
+// meets it: a superset of the triangles that can touch the box, sorted. (Callers only
+// keep the triangles that an exact test finds touching, so which superset it is does
+// not change their results.)
 void
 Mesher::meshNear(const Vector& low, const Vector& high, std::vector<std::uint32_t>& nearby)
 {
@@ -1317,13 +1344,27 @@ Mesher::meshNear(const Vector& low, const Vector& high, std::vector<std::uint32_
         gridInsert(u);
   }
   nearby.clear();
-  forEachCell(low, high, [&](CellKey key) {
-    const auto found = grid_.find(key);
-    if (found != grid_.end())
-      for (const std::uint32_t u : found->second)
-        if (state_[u] == kInMesh)
-          nearby.push_back(u);
-  });
+  const Box box{low, high};
+  const auto take_if_near = [&](std::uint32_t u) {
+    if (state_[u] == kInMesh && !boxesApart(boundingBox(oriented_[u]), box))
+      nearby.push_back(u);
+  };
+  if (cellCount(low, high) <= static_cast<double>(grid_.size())) {
+    forEachCell(low, high, [&](CellKey key) {
+      const auto found = grid_.find(key);
+      if (found != grid_.end())
+        for (const std::uint32_t u : found->second)
+          if (state_[u] == kInMesh)
+            nearby.push_back(u);
+    });
+  }
+  else { // a box wider than the occupied grid: visiting its cells would cost more
+    for (const auto& cell : grid_)
+      for (const std::uint32_t u : cell.second)
+        take_if_near(u);
+  }
+  for (const std::uint32_t u : large_)
+    take_if_near(u);
   std::sort(nearby.begin(), nearby.end());
   nearby.erase(std::unique(nearby.begin(), nearby.end()), nearby.end());
 }
