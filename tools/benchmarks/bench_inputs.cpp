@@ -158,6 +158,10 @@ dataFiles()
       "airborne LiDAR (UTM coordinates, 213 duplicates): height field with buildings");
   add("gargoyle", "gargoyle_95435_normals.ply", "real scan",
       "virtual scan with noise and missing regions (normals in the file are not used)");
+  add("table-scene", "pcl_table_scene_mug_stereo_textured_640x480.pcd", "real scan",
+      "PCL's stereo capture of a table with a mug: organized 640x480, its 209280 "
+      "finite "
+      "points (the NaN entries dropped); noisy, sparse background, many holes");
   return files;
 }
 
