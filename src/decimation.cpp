@@ -174,7 +174,6 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
                         [&](const tbb::blocked_range<std::size_t>& range) {
                           StarGatherer& gatherer = gatherers.local();
                           std::vector<Eigen::Vector3d> offsets;
-                          std::vector<int> kept;
                           for (std::size_t k = range.begin(); k != range.end(); ++k) {
                             const SampleIndex s = candidates[k];
                             const VertexHandle v = d.vertex_of[s];
@@ -190,8 +189,8 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
                             const double limit = rho * d.height[s];
                             const CoconeCellClipper::Result measured =
                                 clippers.local().coconeRadius(axis_of(s), sin_of(s),
-                                                              limit, 1, offsets, &kept,
-                                                              cut);
+                                                              limit, 1, offsets,
+                                                              nullptr, cut);
                             start_ratio[s] =
                                 measured.reached_limit || !(limit > 0)
                                     ? std::numeric_limits<double>::infinity()
