@@ -80,13 +80,15 @@ sorted(pcl::Indices indices)
   return indices;
 }
 
-/** Runs the filter at \a rho on \a cloud and returns the kept indices. */
+/** Runs the filter at \a rho on \a cloud, rims thinned or not (setThinRims), and
+ * returns the kept indices. */
 pcl::Indices
-decimate(const Cloud::ConstPtr& cloud, double rho = 0.3)
+decimate(const Cloud::ConstPtr& cloud, double rho = 0.3, bool thin_rims = true)
 {
   Decimation decimation;
   decimation.setInputCloud(cloud);
   decimation.setRatioBound(rho);
+  decimation.setThinRims(thin_rims);
   pcl::Indices kept;
   decimation.filter(kept);
   EXPECT_TRUE(decimation.getErrorMessage().empty()) << decimation.getErrorMessage();
@@ -823,20 +825,6 @@ reconstruct(const Cloud::Ptr& cloud, const std::string& label, bool check)
 // =================================================================================
 // Rims (beyond the paper: setThinRims)
 
-/** Decimates \a cloud at \a rho, rims thinned or kept. */
-pcl::Indices
-decimateRims(const Cloud::ConstPtr& cloud, double rho, bool thin_rims)
-{
-  Decimation decimation;
-  decimation.setInputCloud(cloud);
-  decimation.setRatioBound(rho);
-  decimation.setThinRims(thin_rims);
-  pcl::Indices kept;
-  decimation.filter(kept);
-  EXPECT_TRUE(decimation.getErrorMessage().empty()) << decimation.getErrorMessage();
-  return kept;
-}
-
 // DECIMATE as published never thins the outermost row of an open surface: the cocone
 // of a rim sample runs on past the rim. Thinned rims end about as dense as the rest,
 // and the kept points still give a valid surface with the true boundary loops.
@@ -856,7 +844,7 @@ TEST(VoronoiDecimation, RimsAreThinnedLikeTheRestOfTheSurface)
     ASSERT_GT(rim_before, 50u) << shape.name;
     const std::size_t rest_before = cloud->size() - rim_before;
     for (const bool thin : {false, true}) {
-      const pcl::Indices kept = decimateRims(cloud, 0.3, thin);
+      const pcl::Indices kept = decimate(cloud, 0.3, thin);
       std::size_t rim_after = 0;
       for (const pcl::index_t i : kept)
         rim_after += on_rim[static_cast<std::size_t>(i)];
@@ -893,7 +881,7 @@ TEST(VoronoiDecimation, ClosedSurfacesDoNotDependOnThinRims)
   for (const SampledShape& shape : {sampleSphere(3000, 64), sampleTorus(3000, 65)}) {
     const Cloud::Ptr cloud = toCloud(shape.points);
     for (const double rho : {0.3, 0.4})
-      EXPECT_EQ(decimateRims(cloud, rho, true), decimateRims(cloud, rho, false))
+      EXPECT_EQ(decimate(cloud, rho, true), decimate(cloud, rho, false))
           << shape.name << " at rho " << rho;
   }
 }
