@@ -108,12 +108,17 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
   // That cocone is half as wide (theta / 2): the cut cell is still unbounded towards
   // the convex hull's normals, which a full-width cocone reaches on a curved rim (73
   // of the 270 rim samples of that saddle at theta, 1 at theta / 2).
-  std::vector<Eigen::Vector3d> rim_cut, rim_axis;
+  // Per sample: the plane fitted to a rim sample's links and the way out through its
+  // gap; a zero outward vector for every other sample.
+  struct RimFrame
+  {
+    Eigen::Vector3d axis, outward;
+  };
+  std::vector<RimFrame> rims;
   if (thin_rims) {
     std::vector<std::uint8_t> flags;
     if (detectBoundarySamples(*this, BoundaryParameters(), flags) > 0) {
-      rim_cut.assign(n, Eigen::Vector3d::Zero());
-      rim_axis.assign(n, Eigen::Vector3d::Zero());
+      rims.assign(n, {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()});
       runInArena(threads_, [&] {
         tbb::parallel_for(
             tbb::blocked_range<std::size_t>(0, n, 256), [&](const auto& range) {
@@ -126,24 +131,26 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
                     widestTangentGap(*this, static_cast<SampleIndex>(i),
                                      TangentPlane::fitted, links, scratch);
                 if (gap.angle > kRimGapAngle && gap.angle < 2 * M_PI &&
-                    gap.thickness < kRimThickness) {
-                  rim_cut[i] = gap.direction;
-                  rim_axis[i] = gap.normal;
-                }
+                    gap.thickness < kRimThickness)
+                  rims[i] = {gap.normal, gap.direction};
               }
             });
       });
     }
   }
-  const auto cut_of = [&](SampleIndex s) -> const Eigen::Vector3d* {
-    return !rim_cut.empty() && !rim_cut[s].isZero() ? &rim_cut[s] : nullptr;
+  // The cocone a sample is measured in: around its pole vector at theta, or for a rim
+  // sample around its fitted plane at theta / 2, cut across its gap.
+  struct CoconeFrame
+  {
+    const Eigen::Vector3d& axis;
+    double sin_theta;
+    const Eigen::Vector3d* cut;
   };
   const double rim_sin_theta = std::sin(cocone_angle_ / 2);
-  const auto sin_of = [&](SampleIndex s) {
-    return cut_of(s) ? rim_sin_theta : sin_theta;
-  };
-  const auto axis_of = [&](SampleIndex s) -> const Eigen::Vector3d& {
-    return cut_of(s) ? rim_axis[s] : d.pole_vector[s];
+  const auto frame_of = [&](SampleIndex s) -> CoconeFrame {
+    if (!rims.empty() && !rims[s].outward.isZero())
+      return {rims[s].axis, rim_sin_theta, &rims[s].outward};
+    return {d.pole_vector[s], sin_theta, nullptr};
   };
 
   std::vector<std::uint8_t> alive(n, 0), tracked(n, 0), dirty(n, 0);
@@ -159,7 +166,7 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
     alive[i] = 1;
     ++alive_count;
     start_ratio[i] = d.ratio(static_cast<SampleIndex>(i));
-    if (start_ratio[i] < rho || cut_of(static_cast<SampleIndex>(i)))
+    if (start_ratio[i] < rho || frame_of(static_cast<SampleIndex>(i)).cut)
       candidates.push_back(static_cast<SampleIndex>(i));
   }
 
@@ -180,17 +187,17 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
                             std::vector<SampleIndex>& list = adjacency[s];
                             gatherer.appendNeighbours(d.dt, v, list);
                             compact(list, s, alive);
-                            const Eigen::Vector3d* cut = cut_of(s);
-                            if (!cut)
+                            const CoconeFrame frame = frame_of(s);
+                            if (!frame.cut)
                               continue;
                             offsets.clear();
                             for (const SampleIndex q : list)
                               offsets.push_back(d.centered[q] - d.centered[s]);
                             const double limit = rho * d.height[s];
                             const CoconeCellClipper::Result measured =
-                                clippers.local().coconeRadius(axis_of(s), sin_of(s),
-                                                              limit, 1, offsets,
-                                                              nullptr, cut);
+                                clippers.local().coconeRadius(
+                                    frame.axis, frame.sin_theta, limit, 1, offsets,
+                                    nullptr, frame.cut);
                             start_ratio[s] =
                                 measured.reached_limit || !(limit > 0)
                                     ? std::numeric_limits<double>::infinity()
@@ -266,13 +273,14 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
         for (const SampleIndex q : list)
           offsets.push_back(d.centered[q] - d.centered[s]);
         const double limit = rho * d.height[s];
+        const CoconeFrame frame = frame_of(s);
         CoconeCellClipper::Result measured;
         if (list.size() > kListLimit) // rare: prune to the exact Delaunay neighbours
-          measured =
-              clipper.fullCell(axis_of(s), sin_of(s), extent, offsets, kept, cut_of(s));
+          measured = clipper.fullCell(frame.axis, frame.sin_theta, extent, offsets,
+                                      kept, frame.cut);
         else
-          measured = clipper.coconeRadius(axis_of(s), sin_of(s), limit, kListMargin,
-                                          offsets, &kept, cut_of(s));
+          measured = clipper.coconeRadius(frame.axis, frame.sin_theta, limit,
+                                          kListMargin, offsets, &kept, frame.cut);
         std::sort(kept.begin(), kept.end());
         for (std::size_t k = 0; k < kept.size(); ++k)
           list[k] = list[kept[k]];

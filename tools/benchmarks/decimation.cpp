@@ -430,13 +430,21 @@ runDecimationSection(Context& context)
       {
         std::string method;
         Measurement m;
-        bool peer = true; // false: ours, or ours as published (shown, not compared)
+        // Ours and the peers are ranked (bold for the best); DECIMATE as published is
+        // shown beside them only.
+        enum class Role
+        {
+          ours,
+          shown,
+          peer
+        } role = Role::peer;
+        bool ranked() const { return role != Role::shown; }
       };
       std::vector<Row> rows;
       rows.push_back(
           {"VoronoiDecimation (ours)",
            runIsolated([&](Measurement& m) { runOurs(*input, rho, true, m); }, timeout),
-           false});
+           Row::Role::ours});
       if (!rows.front().m.ok) {
         table.add({input->name, fixed(rho, 1), rows.front().method,
                    "failed: " + rows.front().m.error});
@@ -450,7 +458,7 @@ runDecimationSection(Context& context)
             {"ours as published (rims kept)",
              runIsolated([&](Measurement& m) { runOurs(*input, rho, true, m, false); },
                          timeout),
-             false});
+             Row::Role::shown});
       for (const std::string& peer : peers()) {
         const Measurement tuned =
             runIsolated([&](Measurement& m) { tunePeer(*input, peer, target, m); }, timeout);
@@ -464,7 +472,7 @@ runDecimationSection(Context& context)
       }
       double best_h = std::numeric_limits<double>::infinity(), best_mean = best_h;
       for (const Row& r : rows)
-        if (r.m.ok && (r.peer || &r == &rows.front())) {
+        if (r.m.ok && r.ranked()) {
           if (!std::isnan(r.m.value("d_hausdorff")))
             best_h = std::min(best_h, r.m.value("d_hausdorff"));
           if (!std::isnan(r.m.value("d_mean")))
@@ -478,19 +486,16 @@ runDecimationSection(Context& context)
         const double h = r.m.value("d_hausdorff"), mean = r.m.value("d_mean");
         const double kept = r.m.value("kept");
         std::string kept_text = count(kept);
-        if (r.peer)
+        if (r.role == Row::Role::peer)
           kept_text += " (" + (kept >= target ? std::string("+") : std::string("")) +
                        percent(kept / static_cast<double>(target) - 1, 1) + ")";
         table.add({input->name, fixed(rho, 1), r.method, kept_text,
                    &r == &rows.front() ? "rho " + fixed(rho, 1) : r.m.text("parameter"),
                    seconds(r.m.seconds), sig(r.m.peak_mb, 3),
                    count(r.m.value("triangles")), count(r.m.value("loops")),
-                   h == best_h && (r.peer || &r == &rows.front())
-                       ? "**" + sig(h, 2) + "**"
-                       : sig(h, 2),
-                   mean == best_mean && (r.peer || &r == &rows.front())
-                       ? "**" + sig(mean, 2) + "**"
-                       : sig(mean, 2)});
+                   h == best_h && r.ranked() ? "**" + sig(h, 2) + "**" : sig(h, 2),
+                   mean == best_mean && r.ranked() ? "**" + sig(mean, 2) + "**"
+                                                   : sig(mean, 2)});
       }
       // Ours against every peer that kept a comparable count.
       ++cases;
@@ -499,7 +504,7 @@ runDecimationSection(Context& context)
       std::string h_who, mean_who;
       for (std::size_t i = 1; i < rows.size(); ++i) {
         const Measurement& peer = rows[i].m;
-        if (!peer.ok || !rows[i].peer)
+        if (!peer.ok || rows[i].role != Row::Role::peer)
           continue;
         if (!(ours.value("d_hausdorff") < peer.value("d_hausdorff"))) {
           h_ok = false;
