@@ -1788,6 +1788,22 @@ Mesher::removeCrossings()
         return std::make_pair(std::vector<std::uint32_t>(n_, kNoStamp),
                               std::vector<std::uint32_t>(pool_.size(), kNoStamp));
       });
+  // The box of each sample's fan of mesh triangles: a neighbour whose fan is apart from
+  // a suspect's box has no triangle that can cross it, and is passed over without
+  // reading its triangles (most of the neighbours of a suspect's corners are).
+  std::vector<Box> fan_box(n_);
+  const auto findFanBoxes = [&](const tbb::blocked_range<SampleIndex>& range) {
+    for (SampleIndex v = range.begin(); v != range.end(); ++v) {
+      Box& box = fan_box[v];
+      box = {points_[v], points_[v]};
+      for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1]; ++k)
+        if (state_[incidence_[k].triangle] == kInMesh)
+          for (const SampleIndex w : incidence_[k].other) {
+            box.first = box.first.cwiseMin(points_[w]);
+            box.second = box.second.cwiseMax(points_[w]);
+          }
+    }
+  };
   const auto findCrossings = [&](const tbb::blocked_range<std::size_t>& range) {
     auto& [sample_stamp, triangle_stamp] = stamps.local();
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
@@ -1800,6 +1816,8 @@ Mesher::removeCrossings()
         if (sample_stamp[v] == stamp)
           return;
         sample_stamp[v] = stamp;
+        if (boxesApart(fan_box[v], box))
+          return;
         for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1]; ++k) {
           const std::uint32_t u = incidence_[k].triangle;
           if (state_[u] != kInMesh || triangle_stamp[u] == stamp)
@@ -1829,6 +1847,9 @@ Mesher::removeCrossings()
                         for (std::size_t k = range.begin(); k != range.end(); ++k)
                           voronoi_.delaunayNeighbours(corners[k], adjacency[k]);
                       });
+    tbb::parallel_for(
+        tbb::blocked_range<SampleIndex>(0, static_cast<SampleIndex>(n_), 4096),
+        findFanBoxes);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, suspects.size(), 64), findCrossings);
   });
 
