@@ -19,11 +19,13 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <functional>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pcl {
@@ -97,6 +99,42 @@ toEigen(const Point& p)
   return {p.x(), p.y(), p.z()};
 }
 
+/** Marks on samples that clear() forgets in O(1) (a round number per sample), so that
+ * repeats and membership are decided without sorting or searching. Grows to the
+ * largest sample marked; meant to be kept per thread and reused. */
+class SampleMarks
+{
+public:
+  /** Starts a new round, with nothing marked. */
+  void
+  clear()
+  {
+    if (++round_ == 0) { // wrapped: forget every earlier round
+      std::fill(round_of_.begin(), round_of_.end(), 0);
+      round_ = 1;
+    }
+  }
+
+  /** Marks s; false if it was marked already in this round. */
+  bool
+  mark(SampleIndex s)
+  {
+    if (s >= round_of_.size())
+      round_of_.resize(std::max<std::size_t>(s + 1, 2 * round_of_.size()), 0);
+    return std::exchange(round_of_[s], round_) != round_;
+  }
+
+  bool
+  isMarked(SampleIndex s) const
+  {
+    return s < round_of_.size() && round_of_[s] == round_;
+  }
+
+private:
+  std::vector<std::uint32_t> round_of_;
+  std::uint32_t round_ = 1;
+};
+
 /** The cells incident to a vertex, gathered without CGAL's incident_cells (which marks
  * cells in place and so cannot run concurrently). One instance per thread; after the
  * first vertices it no longer allocates. */
@@ -107,12 +145,13 @@ public:
   gather(VertexHandle v);
 
   /** Appends the sample indices of the finite Delaunay neighbours of \a v to \a out,
-   * each once per cell they share with v (unsorted, with repeats). */
+   * each once, unsorted. */
   void
   appendNeighbours(const Delaunay& dt, VertexHandle v, std::vector<SampleIndex>& out);
 
 private:
   std::vector<CellHandle> cells_;
+  SampleMarks seen_;
 };
 
 /** Classification of a point relative to the double cone of a cocone. */

@@ -70,10 +70,12 @@ StarGatherer::gather(VertexHandle v)
 void
 StarGatherer::appendNeighbours(const Delaunay& dt, VertexHandle v, std::vector<SampleIndex>& out)
 {
+  // Each neighbour is in several cells of the star; the marks keep its first sighting.
+  seen_.clear();
   for (const CellHandle& c : gather(v))
     for (int j = 0; j < 4; ++j) {
       const VertexHandle w = c->vertex(j);
-      if (w != v && !dt.is_infinite(w))
+      if (w != v && !dt.is_infinite(w) && seen_.mark(w->info()))
         out.push_back(w->info());
     }
 }
@@ -426,7 +428,6 @@ VoronoiCocone::delaunayNeighbours(SampleIndex i, std::vector<SampleIndex>& neigh
   thread_local StarGatherer gatherer;
   gatherer.appendNeighbours(impl_->dt, v, neighbours);
   std::sort(neighbours.begin(), neighbours.end());
-  neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
 }
 
 void
@@ -437,21 +438,31 @@ VoronoiCocone::delaunayTrianglesAmong(
   triangles.clear();
   if (impl_->vertex_of.empty())
     return;
-  std::vector<SampleIndex> members;
-  members.reserve(samples.size());
+  // Several threads may ask at once (one hole each): per-thread scratch.
+  thread_local StarGatherer star;
+  thread_local SampleMarks is_member;
+  thread_local std::vector<SampleIndex> members;
+  members.clear();
+  is_member.clear();
   for (const SampleIndex s : samples)
-    members.push_back(impl_->representative[s]);
-  std::sort(members.begin(), members.end());
-  members.erase(std::unique(members.begin(), members.end()), members.end());
-  const auto is_member = [&](SampleIndex s) {
-    return std::binary_search(members.begin(), members.end(), s);
+    if (is_member.mark(impl_->representative[s]))
+      members.push_back(impl_->representative[s]);
+  // A finite vertex that is a member: the infinite vertex's info is no sample.
+  const auto finite_member = [&](VertexHandle w) {
+    return !impl_->dt.is_infinite(w) && is_member.isMarked(w->info());
   };
-  StarGatherer star;
   for (const SampleIndex s : members) {
     const VertexHandle v = impl_->vertex_of[s];
     if (v == VertexHandle())
       continue;
     for (const CellHandle& c : star.gather(v)) {
+      // Most cells at a hole's rim have only v and one other member: no facet of
+      // three members, told without looking at the facets.
+      int in_cell = 0;
+      for (int j = 0; j < 4; ++j)
+        in_cell += finite_member(c->vertex(j));
+      if (in_cell < 3)
+        continue;
       for (int i = 0; i < 4; ++i) {
         if (c->vertex(i) == v)
           continue;
@@ -462,7 +473,7 @@ VoronoiCocone::delaunayTrianglesAmong(
           if (j == i)
             continue;
           const VertexHandle w = c->vertex(j);
-          if (impl_->dt.is_infinite(w) || !is_member(w->info()))
+          if (!finite_member(w))
             keep = false;
           else
             t[k++] = w->info();
