@@ -1486,8 +1486,12 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
   std::vector<double> cost(m * m), cost_to(m * m);
   std::vector<std::uint32_t> split(m * m, 0);
   // The least-area fill with the triangles known to cross excluded. The full search
-  // (test_every) tests each candidate that would improve its subproblem, and adds what
-  // it crosses to the blockers; a triangle the rounds tested is not tested again.
+  // (test_every) takes each subproblem's candidates from the smallest area up, testing
+  // those the rounds did not, and stops at the first that crosses nothing: the same
+  // choice as a scan keeping the smallest clear one, with ties to the smaller split.
+  // What the smaller candidates cross is what stands between the subproblem and a
+  // smaller fill: those are the blockers. Larger candidates are never tested.
+  std::vector<std::pair<double, std::uint32_t> > by_area;
   const auto solve = [&](bool test_every) {
     const std::vector<std::uint8_t>& diagonals = test_every ? new_diagonal : usable;
     std::fill(cost.begin(), cost.end(), infinity);
@@ -1504,24 +1508,36 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
         const double* area = &areas_[at(i, 0, k)];
         double best = infinity;
         std::size_t best_j = 0;
-        for (std::size_t j = i + 1; j < k; ++j) {
-          const double total = from_i[j] + to_k[j] + area[j];
-          if (!(total < best))
-            continue;
-          const std::uint8_t verdict = verdicts_[at(i, j, k)];
-          if (test_every && verdict == kUntested) {
-            if (crosses({loop[j], loop[i], loop[k]}, blockers))
-              continue;
+        if (test_every) {
+          by_area.clear();
+          for (std::size_t j = i + 1; j < k; ++j) {
+            const double total = from_i[j] + to_k[j] + area[j];
+            if (total < infinity)
+              by_area.emplace_back(total, static_cast<std::uint32_t>(j));
           }
-          else if (verdict == kCrossing) {
-            if (test_every) {
+          std::sort(by_area.begin(), by_area.end());
+          for (const auto& [total, j] : by_area) {
+            const std::uint8_t verdict = verdicts_[at(i, j, k)];
+            if (verdict == kCrossing) {
               const auto [from, to] = crossed_by.at(at(i, j, k));
               blockers.insert(blockers.end(), crossed.begin() + from, crossed.begin() + to);
+              continue;
             }
-            continue;
+            if (verdict == kUntested && crosses({loop[j], loop[i], loop[k]}, blockers))
+              continue;
+            best = total;
+            best_j = j;
+            break;
           }
-          best = total;
-          best_j = j;
+        }
+        else {
+          for (std::size_t j = i + 1; j < k; ++j) {
+            const double total = from_i[j] + to_k[j] + area[j];
+            if (total < best && verdicts_[at(i, j, k)] != kCrossing) {
+              best = total;
+              best_j = j;
+            }
+          }
         }
         cost[i * m + k] = cost_to[k * m + i] = best;
         split[i * m + k] = static_cast<std::uint32_t>(best_j);
