@@ -15,8 +15,10 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <numeric>
 #include <random>
 #include <set>
+#include <thread>
 #include <vector>
 
 namespace {
@@ -412,6 +414,62 @@ TEST(VoronoiCocone, MarkedTrianglesAndIncidenceListsAgree)
             << " marked triangles, mean cocone neighbours "
             << static_cast<double>(total_neighbours) / static_cast<double>(n)
             << std::endl;
+}
+
+// The neighbour lists against the edges of every Delaunay triangle: sorted, each
+// neighbour once, a duplicate answering with its representative's list. The lookups
+// keep per-thread marks across calls and across diagrams, so they are repeated on a
+// second, smaller diagram, then again on the first, and from two threads at once.
+TEST(VoronoiCocone, DelaunayNeighboursAreTheEdgesOfTheTriangulation)
+{
+  const auto expectedLists = [](const VoronoiCocone& voronoi) {
+    std::vector<SampleIndex> all(voronoi.size());
+    std::iota(all.begin(), all.end(), 0u);
+    std::vector<std::array<SampleIndex, 3> > triangles;
+    voronoi.delaunayTrianglesAmong(all, triangles);
+    std::vector<std::set<SampleIndex> > edges(voronoi.size());
+    for (const auto& t : triangles)
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+          if (a != b)
+            edges[t[a]].insert(t[b]);
+    std::vector<std::vector<SampleIndex> > lists(voronoi.size());
+    for (SampleIndex i = 0; i < voronoi.size(); ++i) {
+      const std::set<SampleIndex>& of = edges[voronoi.representative(i)];
+      lists[i].assign(of.begin(), of.end());
+    }
+    return lists;
+  };
+  const auto lookedUp = [](const VoronoiCocone& voronoi, SampleIndex first,
+                           SampleIndex step) {
+    std::vector<std::vector<SampleIndex> > lists(voronoi.size());
+    for (SampleIndex i = first; i < voronoi.size(); i += step)
+      voronoi.delaunayNeighbours(i, lists[i]);
+    return lists;
+  };
+
+  Points torus = sampleTorus(1500, 3).points;
+  torus.push_back(torus[10]); // duplicates read their representative's list
+  torus.push_back(torus[700]);
+  VoronoiCocone big;
+  ASSERT_EQ(big.compute(torus), Status::ok) << big.errorMessage();
+  const std::vector<std::vector<SampleIndex> > expected = expectedLists(big);
+  EXPECT_EQ(lookedUp(big, 0, 1), expected);
+  EXPECT_FALSE(expected[torus.size() - 1].empty());
+  EXPECT_EQ(expected[torus.size() - 1], expected[700]);
+
+  VoronoiCocone small;
+  ASSERT_EQ(small.compute(sampleSphere(200, 4).points), Status::ok)
+      << small.errorMessage();
+  EXPECT_EQ(lookedUp(small, 0, 1), expectedLists(small));
+  EXPECT_EQ(lookedUp(big, 0, 1), expected);
+
+  std::vector<std::vector<SampleIndex> > even, odd;
+  std::thread other([&] { odd = lookedUp(big, 1, 2); });
+  even = lookedUp(big, 0, 2);
+  other.join();
+  for (SampleIndex i = 0; i < big.size(); ++i)
+    EXPECT_EQ(i % 2 ? odd[i] : even[i], expected[i]) << "sample " << i;
 }
 
 TEST(VoronoiCocone, DelaunayTrianglesAmongASmallSet)
