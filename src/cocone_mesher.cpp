@@ -1461,6 +1461,28 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
     }
     return crossing;
   };
+  // The full search needs a verdict per candidate but only the set of blockers, so a
+  // triangle already named is tested after the others, and only until one is met: the
+  // verdict is then settled, and the name is known. Most candidates of a hole that no
+  // fill closes cross many of the same triangles.
+  std::vector<std::uint8_t> named(near_.size(), 0);
+  const auto blocked = [&](const TriangleIndices& t) {
+    const Box t_box = boundingBox(t);
+    const auto meets = [&](std::size_t k) {
+      return !boxesApart(boxes[k], t_box) &&
+             trianglesIntersect(points_, t, oriented_[near_[k]]);
+    };
+    bool crossing = false;
+    for (std::size_t k = 0; k < near_.size(); ++k)
+      if (!named[k] && meets(k)) {
+        crossing = true;
+        named[k] = 1;
+        blockers.push_back(near_[k]);
+      }
+    for (std::size_t k = 0; k < near_.size() && !crossing; ++k)
+      crossing = named[k] && meets(k);
+    return crossing;
+  };
 
   // Each round solves the same problem with more triangles excluded, so the areas are
   // computed once, and laid out so that the inner loop over the split j reads memory
@@ -1523,7 +1545,7 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
               blockers.insert(blockers.end(), crossed.begin() + from, crossed.begin() + to);
               continue;
             }
-            if (verdict == kUntested && crosses({loop[j], loop[i], loop[k]}, blockers))
+            if (verdict == kUntested && blocked({loop[j], loop[i], loop[k]}))
               continue;
             best = total;
             best_j = j;
