@@ -1447,18 +1447,20 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
   boxes.reserve(near_.size());
   for (const std::uint32_t u : near_)
     boxes.push_back(boundingBox(oriented_[u]));
+  // Whether t, of box t_box, meets the k-th mesh triangle near the loop.
+  const auto meets = [&](const TriangleIndices& t, const Box& t_box, std::size_t k) {
+    return !boxesApart(boxes[k], t_box) &&
+           trianglesIntersect(points_, t, oriented_[near_[k]]);
+  };
   const auto crosses = [&](const TriangleIndices& t,
                            std::vector<std::uint32_t>& crossed) {
     const Box t_box = boundingBox(t);
     bool crossing = false;
-    for (std::size_t k = 0; k < near_.size(); ++k) {
-      if (boxesApart(boxes[k], t_box))
-        continue;
-      if (trianglesIntersect(points_, t, oriented_[near_[k]])) {
+    for (std::size_t k = 0; k < near_.size(); ++k)
+      if (meets(t, t_box, k)) {
         crossing = true;
         crossed.push_back(near_[k]);
       }
-    }
     return crossing;
   };
   // The full search needs a verdict per candidate but only the set of blockers, so a
@@ -1468,19 +1470,15 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
   std::vector<std::uint8_t> named(near_.size(), 0);
   const auto blocked = [&](const TriangleIndices& t) {
     const Box t_box = boundingBox(t);
-    const auto meets = [&](std::size_t k) {
-      return !boxesApart(boxes[k], t_box) &&
-             trianglesIntersect(points_, t, oriented_[near_[k]]);
-    };
     bool crossing = false;
     for (std::size_t k = 0; k < near_.size(); ++k)
-      if (!named[k] && meets(k)) {
+      if (!named[k] && meets(t, t_box, k)) {
         crossing = true;
         named[k] = 1;
         blockers.push_back(near_[k]);
       }
     for (std::size_t k = 0; k < near_.size() && !crossing; ++k)
-      crossing = named[k] && meets(k);
+      crossing = named[k] && meets(t, t_box, k);
     return crossing;
   };
 
