@@ -152,6 +152,21 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
       return {rims[s].axis, rim_sin_theta, &rims[s].outward};
     return {d.pole_vector[s], sin_theta, nullptr};
   };
+  // The positions of the samples in \a list relative to s, for the clipper.
+  const auto offsets_from = [&](SampleIndex s, const std::vector<SampleIndex>& list,
+                                std::vector<Eigen::Vector3d>& offsets) {
+    offsets.clear();
+    for (const SampleIndex q : list)
+      offsets.push_back(d.centered[q] - d.centered[s]);
+  };
+  // r_p / h_p from a measurement bounded by limit = rho h_p: infinite when the cocone
+  // reaches the limit (the sample stays at rho), or when there is no limit.
+  const auto ratio_of = [&](SampleIndex s, const CoconeCellClipper::Result& measured,
+                            double limit) {
+    return measured.reached_limit || !(measured.radius < limit)
+               ? std::numeric_limits<double>::infinity()
+               : measured.radius / d.height[s];
+  };
 
   std::vector<std::uint8_t> alive(n, 0), tracked(n, 0), dirty(n, 0);
   std::vector<std::uint32_t> version(n, 0);
@@ -190,18 +205,14 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
                             const CoconeFrame frame = frame_of(s);
                             if (!frame.cut)
                               continue;
-                            offsets.clear();
-                            for (const SampleIndex q : list)
-                              offsets.push_back(d.centered[q] - d.centered[s]);
+                            offsets_from(s, list, offsets);
                             const double limit = rho * d.height[s];
-                            const CoconeCellClipper::Result measured =
-                                clippers.local().coconeRadius(
-                                    frame.axis, frame.sin_theta, limit, 1, offsets,
-                                    nullptr, frame.cut);
                             start_ratio[s] =
-                                measured.reached_limit || !(limit > 0)
-                                    ? std::numeric_limits<double>::infinity()
-                                    : measured.radius / d.height[s];
+                                ratio_of(s,
+                                         clippers.local().coconeRadius(
+                                             frame.axis, frame.sin_theta, limit, 1,
+                                             offsets, nullptr, frame.cut),
+                                         limit);
                           }
                         });
     });
@@ -269,9 +280,7 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
         // Its cell grew since the key was computed: measure again, queue again.
         std::vector<SampleIndex>& list = adjacency[s];
         compact(list, s, alive);
-        offsets.clear();
-        for (const SampleIndex q : list)
-          offsets.push_back(d.centered[q] - d.centered[s]);
+        offsets_from(s, list, offsets);
         const double limit = rho * d.height[s];
         const CoconeFrame frame = frame_of(s);
         CoconeCellClipper::Result measured;
@@ -287,9 +296,7 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
         list.resize(kept.size());
         dirty[s] = 0;
         ++version[s];
-        const double ratio = measured.reached_limit || measured.radius >= limit
-                                 ? std::numeric_limits<double>::infinity()
-                                 : measured.radius / d.height[s];
+        const double ratio = ratio_of(s, measured, limit);
         if (ratio < rho) {
           queue.push({ratio, s, version[s]});
         }

@@ -83,6 +83,15 @@ StarGatherer::appendNeighbours(const Delaunay& dt, VertexHandle v, std::vector<S
 // ---------------------------------------------------------------------------------
 namespace {
 
+/** The calling thread's star gatherer, shared by the Delaunay look-ups below (they may
+ * run on several threads at once; none calls another while using it). */
+StarGatherer&
+threadStarGatherer()
+{
+  thread_local StarGatherer gatherer;
+  return gatherer;
+}
+
 ConeSide
 classify(const Eigen::Vector3d& x, const Eigen::Vector3d& axis, double sin_theta)
 {
@@ -425,8 +434,7 @@ VoronoiCocone::delaunayNeighbours(SampleIndex i, std::vector<SampleIndex>& neigh
     return;
   // Not CGAL's finite_adjacent_vertices, which marks cells in place: this one may run
   // on several threads, and allocates nothing after a thread's first calls.
-  thread_local StarGatherer gatherer;
-  gatherer.appendNeighbours(impl_->dt, v, neighbours);
+  threadStarGatherer().appendNeighbours(impl_->dt, v, neighbours);
   std::sort(neighbours.begin(), neighbours.end());
 }
 
@@ -439,7 +447,7 @@ VoronoiCocone::delaunayTrianglesAmong(
   if (impl_->vertex_of.empty())
     return;
   // Several threads may ask at once (one hole each): per-thread scratch.
-  thread_local StarGatherer star;
+  StarGatherer& star = threadStarGatherer();
   thread_local SampleMarks is_member;
   thread_local std::vector<SampleIndex> members;
   members.clear();
