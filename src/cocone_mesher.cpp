@@ -47,6 +47,7 @@ boxesApart(const Box& a, const Box& b)
 constexpr double kMostGridCells = 64;
 
 constexpr std::uint32_t kCoconeGroup = 0;
+constexpr std::uint32_t kNoTriangle = std::numeric_limits<std::uint32_t>::max();
 // Triangles of polygon fills (not Delaunay triangles): never offered to a walk.
 constexpr std::uint32_t kPolygonGroup = std::numeric_limits<std::uint32_t>::max();
 // Loops longer than this are not filled as polygons (O(m^3) time, O(m^2) memory).
@@ -317,7 +318,13 @@ private:
 
   // Scratch, reused to keep loops free of allocations.
   mutable std::vector<std::uint32_t> scratch_, on_edge_, around_;
+  std::vector<SampleIndex> around_apex_; // apex of each triangle of around_
   std::vector<double> angles_;
+  // During walkAll only (empty otherwise): bit k of closed_edges_[t] says that edge k
+  // of oriented_[t] has two mesh triangles. Nothing leaves the mesh during that walk,
+  // so a set bit stays true, and about a third of its steps (those that find the edge
+  // closed by the time they are taken) skip the look-up that would find out.
+  std::vector<std::uint8_t> closed_edges_;
 };
 
 void
@@ -668,17 +675,40 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
 {
   if (state_[t] != kInMesh)
     return {Step::done, 0};
+  if (!closed_edges_.empty() && ((closed_edges_[t] >> slot) & 1u))
+    return {Step::done, 0}; // closed already
   const TriangleIndices& o = oriented_[t];
   const SampleIndex a = o[slot], b = o[(slot + 1) % 3], c = o[(slot + 2) % 3];
-  meshOnEdge(a, b, on_edge_);
-  if (on_edge_.size() != 1)
+
+  // One pass over the triangles at a finds both the mesh triangles on edge (a, b) and
+  // the candidates around it, with their apexes (the walk's hottest loop).
+  std::size_t mesh_on_edge = 0;
+  around_.clear();
+  around_apex_.clear();
+  const auto sort_in = [&](std::uint32_t s, SampleIndex apex_of_s) {
+    if (state_[s] == kInMesh) {
+      ++mesh_on_edge;
+    }
+    else if (state_[s] == kCandidate && group_[s] == group) {
+      around_.push_back(s);
+      around_apex_.push_back(apex_of_s);
+    }
+  };
+  for (std::uint32_t k = offsets_[a]; k < offsets_[a + 1]; ++k) {
+    const Incidence& at = incidence_[k];
+    if (at.other[0] == b)
+      sort_in(at.triangle, at.other[1]);
+    else if (at.other[1] == b)
+      sort_in(at.triangle, at.other[0]);
+  }
+  forEachLate(a, [&](std::uint32_t s) {
+    if (contains(s, b))
+      sort_in(s, apex(s, a, b));
+  });
+  if (mesh_on_edge != 1)
     return {Step::done, 0}; // closed already
 
   // Candidates around the edge, by rotation angle from t towards its normal.
-  trianglesOnEdge(
-      a, b,
-      [&](std::uint32_t s) { return state_[s] == kCandidate && group_[s] == group; },
-      around_);
   if (around_.empty()) {
     maybe_open_.emplace_back(a, b);
     return {Step::done, 0};
@@ -688,34 +718,40 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
   Vector reference = points_[c] - pa;
   reference = (reference - reference.dot(axis) * axis).normalized();
   const Vector up = orientedNormal(o).normalized();
-  std::uint32_t best = around_[0];
+  std::size_t best_k = 0;
   double best_angle = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; around_.size() > 1 && k < around_.size(); ++k) {
-    Vector u = points_[apex(around_[k], a, b)] - pa;
+    Vector u = points_[around_apex_[k]] - pa;
     u -= u.dot(axis) * axis;
     double angle = std::atan2(u.dot(up), u.dot(reference));
     if (angle <= 0)
       angle += 2 * M_PI;
     if (angle < best_angle) {
       best_angle = angle;
-      best = around_[k];
+      best_k = k;
     }
   }
-  const SampleIndex x = apex(best, a, b);
+  const std::uint32_t best = around_[best_k];
+  const SampleIndex x = around_apex_[best_k];
 
   // Guards: at most two triangles per edge, traversing it in opposite directions.
   bool x_attached = mesh_degree_[x] == 0;
   const std::array<std::pair<SampleIndex, SampleIndex>, 2> new_edges = {
       {{a, x}, {x, b}}};
-  for (const auto& [from, to] : new_edges) {
+  std::array<std::uint32_t, 2> across = {kNoTriangle,
+                                         kNoTriangle}; // mesh triangle there
+  for (int e = 0; e < 2; ++e) {
+    const auto [from, to] = new_edges[e];
     meshOnEdge(from, to, on_edge_);
     if (on_edge_.size() >= 2 ||
         (on_edge_.size() == 1 && traverses(on_edge_[0], from, to))) {
       maybe_open_.emplace_back(a, b);
       return {Step::refused, best};
     }
-    if (on_edge_.size() == 1)
+    if (on_edge_.size() == 1) {
       x_attached = true; // x's fan continues through this boundary edge
+      across[e] = on_edge_[0];
+    }
   }
   if (!x_attached && !allow_pinch) {
     maybe_open_.emplace_back(a, b); // unless a forced step closes it later
@@ -726,6 +762,19 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
 
   oriented_[best] = {b, a, x};
   enterMesh(best);
+  if (!closed_edges_.empty()) {
+    closed_edges_[t] |= static_cast<std::uint8_t>(1u << slot);
+    closed_edges_[best] |= 1u; // b -> a
+    for (int e = 0; e < 2; ++e) {
+      if (across[e] == kNoTriangle)
+        continue;
+      closed_edges_[best] |= static_cast<std::uint8_t>(1u << (e + 1));
+      const TriangleIndices& m = oriented_[across[e]];
+      for (int k = 0; k < 3; ++k)
+        if (m[k] == new_edges[e].second && m[(k + 1) % 3] == new_edges[e].first)
+          closed_edges_[across[e]] |= static_cast<std::uint8_t>(1u << k);
+    }
+  }
   return {Step::added, best};
 }
 
@@ -911,12 +960,14 @@ Mesher::walkAll()
   std::vector<std::pair<std::uint32_t, int> > frontier;
   std::vector<std::uint32_t> added;
   std::uint32_t seed = 0;
+  closed_edges_.assign(pool_.size(), 0);
   while (seedTriangle(seed)) {
     enterMesh(seed);
     report_.walked_triangles += 1;
     frontier = {{seed, 0}, {seed, 1}, {seed, 2}};
     report_.walked_triangles += walk(frontier, kCoconeGroup, added);
   }
+  std::vector<std::uint8_t>().swap(closed_edges_); // stitching removes triangles
 }
 
 // ---------------------------------------------------------------------------------
