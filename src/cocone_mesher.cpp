@@ -11,6 +11,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <chrono>
@@ -888,11 +889,14 @@ Mesher::seedTriangle(std::uint32_t& seed)
   if (seed_order_.empty()) {
     seed_order_.resize(n_);
     std::iota(seed_order_.begin(), seed_order_.end(), 0u);
-    std::sort(seed_order_.begin(), seed_order_.end(),
-              [&](SampleIndex u, SampleIndex v) {
-                return points_[u].x() > points_[v].x() ||
-                       (points_[u].x() == points_[v].x() && u < v);
-              });
+    // A strict total order (ties by index): the parallel sort gives the one result.
+    detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
+      tbb::parallel_sort(seed_order_.begin(), seed_order_.end(),
+                         [&](SampleIndex u, SampleIndex v) {
+                           return points_[u].x() > points_[v].x() ||
+                                  (points_[u].x() == points_[v].x() && u < v);
+                         });
+    });
   }
   const auto is_free = [&](std::uint32_t t) {
     const TriangleIndices& tri = pool_[t];
@@ -903,6 +907,8 @@ Mesher::seedTriangle(std::uint32_t& seed)
   SampleIndex extreme = kNoSample;
   for (; seed_cursor_ < seed_order_.size(); ++seed_cursor_) {
     const SampleIndex v = seed_order_[seed_cursor_];
+    if (mesh_degree_[v] != 0)
+      continue; // a free triangle has no vertex in the mesh
     bool has_free = false;
     for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1] && !has_free; ++k)
       has_free = is_free(incidence_[k].triangle);
