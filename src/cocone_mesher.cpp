@@ -159,21 +159,32 @@ private:
       for (const std::uint32_t t : late->second)
         f(t);
   }
+  /** Calls f(t, apex) for every pool triangle t on edge (a, b), apex being its third
+   * vertex. */
+  template <typename F> void forEachOnEdge(SampleIndex a, SampleIndex b, F&& f) const
+  {
+    // The other two vertices are stored beside each triangle id: no look-up of the
+    // triangle itself, neither for the many that do not contain b nor for the apex.
+    for (std::uint32_t k = offsets_[a]; k < offsets_[a + 1]; ++k) {
+      const Incidence& at = incidence_[k];
+      if (at.other[0] == b)
+        f(at.triangle, at.other[1]);
+      else if (at.other[1] == b)
+        f(at.triangle, at.other[0]);
+    }
+    forEachLate(a, [&](std::uint32_t t) {
+      if (contains(t, b))
+        f(t, apex(t, a, b));
+    });
+  }
   /** Pool triangles on edge (a, b) accepted by \a keep. */
   template <typename Keep>
   void trianglesOnEdge(SampleIndex a, SampleIndex b, Keep&& keep,
                        std::vector<std::uint32_t>& out) const
   {
     out.clear();
-    // The other two vertices are stored beside each triangle id: no look-up of the
-    // triangle itself for the many that do not contain b.
-    for (std::uint32_t k = offsets_[a]; k < offsets_[a + 1]; ++k) {
-      const Incidence& at = incidence_[k];
-      if ((at.other[0] == b || at.other[1] == b) && keep(at.triangle))
-        out.push_back(at.triangle);
-    }
-    forEachLate(a, [&](std::uint32_t t) {
-      if (contains(t, b) && keep(t))
+    forEachOnEdge(a, b, [&](std::uint32_t t, SampleIndex) {
+      if (keep(t))
         out.push_back(t);
     });
   }
@@ -239,7 +250,7 @@ private:
                         std::vector<std::uint32_t>& label) const;
   std::size_t countFans(SampleIndex v) const;
   std::size_t prune(std::uint32_t group);
-  bool mustPrune(std::uint32_t t, std::vector<std::uint32_t>& on_edge,
+  bool mustPrune(std::uint32_t t, std::vector<SampleIndex>& apexes,
                  std::vector<double>& angles) const;
   void walkAll();
   struct Step
@@ -318,8 +329,9 @@ private:
   std::size_t seed_cursor_ = 0;
 
   // Scratch, reused to keep loops free of allocations.
-  mutable std::vector<std::uint32_t> scratch_, on_edge_, around_;
+  mutable std::vector<std::uint32_t> on_edge_, around_;
   std::vector<SampleIndex> around_apex_; // apex of each triangle of around_
+  std::vector<SampleIndex> apexes_;      // scratch of mustPrune
   std::vector<double> angles_;
   // During walkAll only (empty otherwise): bit k of closed_edges_[t] says that edge k
   // of oriented_[t] has two mesh triangles. Nothing leaves the mesh during that walk,
@@ -537,7 +549,7 @@ Mesher::removeLids()
 // or more triangles still go; the gaps are closed by stitching. Triangles incident to a
 // boundary sample are never pruned, as in the paper.
 bool
-Mesher::mustPrune(std::uint32_t t, std::vector<std::uint32_t>& on_edge,
+Mesher::mustPrune(std::uint32_t t, std::vector<SampleIndex>& apexes,
                   std::vector<double>& angles) const
 {
   const TriangleIndices& tri = pool_[t];
@@ -545,37 +557,36 @@ Mesher::mustPrune(std::uint32_t t, std::vector<std::uint32_t>& on_edge,
   bool bare = false, held = false;
   for (int k = 0; k < 3; ++k) {
     const SampleIndex a = tri[k], b = tri[(k + 1) % 3];
-    trianglesOnEdge(
-        a, b,
-        [&](std::uint32_t s) {
-          return state_[s] == kInMesh ||
-                 (state_[s] == kCandidate && group_[s] == group);
-        },
-        on_edge);
-    if (on_edge.size() == 1) {
+    // The apexes of the live triangles on the edge (t's own among them).
+    apexes.clear();
+    forEachOnEdge(a, b, [&](std::uint32_t s, SampleIndex apex_of_s) {
+      if (state_[s] == kInMesh || (state_[s] == kCandidate && group_[s] == group))
+        apexes.push_back(apex_of_s);
+    });
+    if (apexes.size() == 1) {
       bare = true;
       continue;
     }
     const Vector pa = points_[a];
     const Vector axis = (points_[b] - pa).normalized();
-    const auto across = [&](std::uint32_t s) {
-      Vector u = points_[apex(s, a, b)] - pa;
+    const auto across = [&](SampleIndex apex_of_s) {
+      Vector u = points_[apex_of_s] - pa;
       return Vector(u - u.dot(axis) * axis);
     };
-    if (on_edge.size() == 2) {
+    if (apexes.size() == 2) {
       // Two half-planes fold (the wider gap exceeds 3 pi / 2) when they are less than
       // pi / 2 apart.
-      if (across(on_edge[0]).dot(across(on_edge[1])) > 0)
+      if (across(apexes[0]).dot(across(apexes[1])) > 0)
         return true;
       held = true;
       continue;
     }
     // Angles around the edge, from the first triangle's half-plane.
-    const Vector reference = across(on_edge[0]).normalized();
+    const Vector reference = across(apexes[0]).normalized();
     const Vector normal = axis.cross(reference);
     angles.clear();
-    for (const std::uint32_t s : on_edge) {
-      const Vector u = across(s);
+    for (const SampleIndex apex_of_s : apexes) {
+      const Vector u = across(apex_of_s);
       double angle = std::atan2(u.dot(normal), u.dot(reference));
       if (angle < 0)
         angle += 2 * M_PI;
@@ -619,11 +630,11 @@ Mesher::prune(std::uint32_t group)
   std::vector<std::uint8_t> verdict(last - first, 0),
       stale(last - first, parallel ? 0 : 1);
   const auto judge = [&](const tbb::blocked_range<std::size_t>& range) {
-    std::vector<std::uint32_t> on_edge;
+    std::vector<SampleIndex> apexes;
     std::vector<double> angles;
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
       const std::uint32_t t = work[i];
-      verdict[t - first] = !is_protected(t) && mustPrune(t, on_edge, angles);
+      verdict[t - first] = !is_protected(t) && mustPrune(t, apexes, angles);
     }
   };
   if (parallel)
@@ -639,7 +650,7 @@ Mesher::prune(std::uint32_t group)
     queued[t - first] = 0;
     if (state_[t] != kCandidate)
       continue;
-    if (stale[t - first] ? is_protected(t) || !mustPrune(t, scratch_, angles_)
+    if (stale[t - first] ? is_protected(t) || !mustPrune(t, apexes_, angles_)
                          : !verdict[t - first])
       continue;
     state_[t] = kRejected;
@@ -686,7 +697,7 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
   std::size_t mesh_on_edge = 0;
   around_.clear();
   around_apex_.clear();
-  const auto sort_in = [&](std::uint32_t s, SampleIndex apex_of_s) {
+  forEachOnEdge(a, b, [&](std::uint32_t s, SampleIndex apex_of_s) {
     if (state_[s] == kInMesh) {
       ++mesh_on_edge;
     }
@@ -694,17 +705,6 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
       around_.push_back(s);
       around_apex_.push_back(apex_of_s);
     }
-  };
-  for (std::uint32_t k = offsets_[a]; k < offsets_[a + 1]; ++k) {
-    const Incidence& at = incidence_[k];
-    if (at.other[0] == b)
-      sort_in(at.triangle, at.other[1]);
-    else if (at.other[1] == b)
-      sort_in(at.triangle, at.other[0]);
-  }
-  forEachLate(a, [&](std::uint32_t s) {
-    if (contains(s, b))
-      sort_in(s, apex(s, a, b));
   });
   if (mesh_on_edge != 1)
     return {Step::done, 0}; // closed already
