@@ -116,7 +116,7 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
   };
   std::vector<RimFrame> rims;
   if (thin_rims) {
-    std::vector<std::uint8_t> flags;
+    std::vector<std::uint8_t>& flags = levels.boundary;
     if (detectBoundarySamples(*this, BoundaryParameters(), flags) > 0) {
       rims.assign(n, {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()});
       runInArena(threads_, [&] {

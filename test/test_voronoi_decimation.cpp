@@ -4,6 +4,7 @@
 // removal, nested levels of detail, density equalisation, the paper's table 2, the
 // topology of the reconstruction after decimation (against VoxelGrid and
 // UniformSampling), and bad input.
+#include <pcl/cocone/boundary_samples.h>
 #include <pcl/cocone/cocone_reconstruction.h>
 #include <pcl/cocone/mesh_topology.h>
 #include <pcl/cocone/voronoi_cocone.h>
@@ -80,15 +81,18 @@ sorted(pcl::Indices indices)
   return indices;
 }
 
-/** Runs the filter at \a rho on \a cloud, rims thinned or not (setThinRims), and
+/** Runs the filter at \a rho on \a cloud, rims thinned or not (setThinRims), with
+ * \a relaxation rounds after DECIMATE (the default of the class unless given), and
  * returns the kept indices. */
 pcl::Indices
-decimate(const Cloud::ConstPtr& cloud, double rho = 0.3, bool thin_rims = true)
+decimate(const Cloud::ConstPtr& cloud, double rho = 0.3, bool thin_rims = true,
+         unsigned relaxation = Decimation().getRelaxationIterations())
 {
   Decimation decimation;
   decimation.setInputCloud(cloud);
   decimation.setRatioBound(rho);
   decimation.setThinRims(thin_rims);
+  decimation.setRelaxationIterations(relaxation);
   pcl::Indices kept;
   decimation.filter(kept);
   EXPECT_TRUE(decimation.getErrorMessage().empty()) << decimation.getErrorMessage();
@@ -566,7 +570,7 @@ compareWithReference(const SampledShape& shape, double rho)
   ASSERT_EQ(full.compute(points), pcl::cocone::Status::ok) << full.errorMessage();
   ASSERT_EQ(full.numUniqueSamples(), points.size());
   const reference::Result expected = reference::decimate(full, rho);
-  const pcl::Indices kept = decimate(cloud, rho);
+  const pcl::Indices kept = decimate(cloud, rho, true, 0); // DECIMATE's own sample
 
   std::vector<bool> ours(points.size(), false);
   for (const pcl::index_t i : kept)
@@ -634,7 +638,8 @@ TEST(VoronoiDecimation, LevelsOfDetailAreNestedSeparateRuns)
           << "not nested at " << rhos[k];
       EXPECT_LT(kept[k].size(), kept[k - 1].size());
     }
-    EXPECT_EQ(kept[k], decimate(cloud, rhos[k])) << "rho " << rhos[k];
+    // DECIMATE's own sets: computeLevelsOfDetail does not relax.
+    EXPECT_EQ(kept[k], decimate(cloud, rhos[k], true, 0)) << "rho " << rhos[k];
     for (std::size_t i = 0; i < cloud->size(); ++i) {
       const bool is_kept = std::binary_search(kept[k].begin(), kept[k].end(),
                                               static_cast<pcl::index_t>(i));
@@ -644,10 +649,12 @@ TEST(VoronoiDecimation, LevelsOfDetailAreNestedSeparateRuns)
   std::cout << "[ measured ] dense-cap sphere 5000, kept: " << counts.str()
             << std::endl;
 
-  // The same levels after a plain filter() at the largest rho; any order of the values.
+  // The same levels after a plain filter() at the largest rho without relaxation; any
+  // order of the values.
   Decimation single;
   single.setInputCloud(cloud);
   single.setRatioBound(0.4);
+  single.setRelaxationIterations(0);
   pcl::Indices at_largest;
   single.filter(at_largest);
   EXPECT_EQ(at_largest, kept.back());
@@ -873,6 +880,146 @@ TEST(VoronoiDecimation, RimsAreThinnedLikeTheRestOfTheSurface)
           << shape.name;
     }
   }
+}
+
+// =================================================================================
+// Relaxation (beyond the paper: setRelaxationIterations)
+
+/** The largest distance from a point of \a cloud to its nearest point among \a kept:
+ * how far the kept sample leaves the surface uncovered. */
+double
+coveringRadius(const Cloud& cloud, const pcl::Indices& kept)
+{
+  double largest = 0;
+  for (const pcl::PointXYZ& p : cloud) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const pcl::index_t k : kept)
+      nearest = std::min(
+          nearest, static_cast<double>(
+                       (cloud[k].getVector3fMap() - p.getVector3fMap()).squaredNorm()));
+    largest = std::max(largest, nearest);
+  }
+  return std::sqrt(largest);
+}
+
+/** The largest distance from the unit sphere of a point of the mesh's triangles
+ * (sampled on a grid of barycentric coordinates): the one-sided Hausdorff distance
+ * from the mesh to the sphere. */
+double
+distanceToUnitSphere(const Mesh& mesh)
+{
+  double largest = 0;
+  for (const TriangleIndices& t : mesh.triangles)
+    for (int i = 0; i <= 8; ++i)
+      for (int j = 0; i + j <= 8; ++j) {
+        const Eigen::Vector3d x = mesh.points[t[0]] +
+                                  (i / 8.0) * (mesh.points[t[1]] - mesh.points[t[0]]) +
+                                  (j / 8.0) * (mesh.points[t[2]] - mesh.points[t[0]]);
+        largest = std::max(largest, std::abs(x.norm() - 1));
+      }
+  return largest;
+}
+
+// DECIMATE leaves kept samples bunched beside the gaps it opened; the relaxation keeps
+// the count and evens them out, so the same number of points covers the surface more
+// closely and reconstructs it more accurately.
+TEST(VoronoiDecimation, RelaxationEvensOutTheSampleAtTheSameSize)
+{
+  const Cloud::Ptr cloud = toCloud(sampleSphere(6000, 91).points);
+  const pcl::Indices own = decimate(cloud, 0.3, true, 0);
+  Decimation decimation;
+  decimation.setInputCloud(cloud);
+  EXPECT_EQ(decimation.getRelaxationIterations(), 10u);
+  pcl::Indices relaxed;
+  decimation.filter(relaxed);
+  ASSERT_EQ(relaxed.size(), own.size());
+  EXPECT_NE(relaxed, own);
+  EXPECT_EQ(decimate(cloud, 0.3), relaxed) << "not the same on every run";
+
+  // The levels describe the relaxed output.
+  const std::vector<double>& levels = decimation.getRemovalLevels();
+  for (std::size_t i = 0; i < cloud->size(); ++i)
+    EXPECT_EQ(std::binary_search(relaxed.begin(), relaxed.end(),
+                                 static_cast<pcl::index_t>(i)),
+              levels[i] >= 0.3)
+        << "point " << i;
+
+  const double cover_own = coveringRadius(*cloud, own);
+  const double cover_relaxed = coveringRadius(*cloud, relaxed);
+  const Mesh mesh_own = reconstruct(subCloud(*cloud, own), "sphere, DECIMATE", true);
+  const Mesh mesh_relaxed =
+      reconstruct(subCloud(*cloud, relaxed), "sphere, relaxed", true);
+  const double error_own = distanceToUnitSphere(mesh_own);
+  const double error_relaxed = distanceToUnitSphere(mesh_relaxed);
+  std::cout << "[ measured ] sphere 6000 at rho 0.3, " << own.size()
+            << " kept: covering radius " << cover_own << " -> " << cover_relaxed
+            << ", mesh to sphere " << error_own << " -> " << error_relaxed << std::endl;
+  EXPECT_LT(cover_relaxed, 0.9 * cover_own);
+  EXPECT_LT(error_relaxed, 0.9 * error_own);
+  EXPECT_TRUE(mesh_relaxed.topology.isClosed());
+  EXPECT_EQ(mesh_relaxed.topology.genus(), 0);
+  EXPECT_EQ(mesh_relaxed.points.size(), relaxed.size());
+}
+
+// Rim samples (BOUNDARY's flags) stay where DECIMATE left them, and the relaxed
+// hemisphere still reconstructs to a disc with one boundary loop.
+TEST(VoronoiDecimation, RelaxationHoldsRimSamples)
+{
+  const SampledShape shape = sampleHemisphere(6000, 92);
+  const Cloud::Ptr cloud = toCloud(shape.points);
+  VoronoiCocone voronoi;
+  ASSERT_EQ(voronoi.compute(toPoints(*cloud)), pcl::cocone::Status::ok);
+  std::vector<std::uint8_t> flags;
+  ASSERT_GT(pcl::cocone::detectBoundarySamples(
+                voronoi, pcl::cocone::BoundaryParameters(), flags),
+            0u);
+  const pcl::Indices own = decimate(cloud, 0.3, true, 0);
+  const pcl::Indices relaxed = decimate(cloud, 0.3);
+  ASSERT_EQ(relaxed.size(), own.size());
+  std::size_t rim_kept = 0;
+  for (const pcl::index_t i : own) {
+    if (!flags[static_cast<std::size_t>(i)])
+      continue;
+    ++rim_kept;
+    EXPECT_TRUE(std::binary_search(relaxed.begin(), relaxed.end(), i))
+        << "rim sample " << i << " moved";
+  }
+  EXPECT_GT(rim_kept, 10u);
+  const Mesh mesh = reconstruct(subCloud(*cloud, relaxed), "hemisphere, relaxed", true);
+  EXPECT_EQ(mesh.topology.boundary_loops.size(), 1u);
+  EXPECT_EQ(mesh.topology.genus(), 0);
+}
+
+// The core function on its own: the count never changes, fixed samples hold, and
+// mismatched sizes or no rounds change nothing.
+TEST(VoronoiDecimation, RelaxationCoreKeepsCountAndFixedSamples)
+{
+  const Points points = toPoints(*toCloud(sampleTorus(3000, 93).points));
+  VoronoiCocone voronoi;
+  ASSERT_EQ(voronoi.compute(points), pcl::cocone::Status::ok);
+  std::vector<std::uint8_t> kept(points.size(), 0);
+  for (std::size_t i = 0; i < points.size(); i += 7)
+    kept[i] = 1; // an uneven subset: every 7th sample of a blue-noise order
+  const std::size_t count = std::count(kept.begin(), kept.end(), 1);
+  const std::vector<std::uint8_t> none(points.size(), 0), all(points.size(), 1);
+
+  std::vector<std::uint8_t> moved = kept;
+  EXPECT_GT(pcl::cocone::relaxDecimatedSample(voronoi, none, 5, 0, moved), 0u);
+  EXPECT_EQ(static_cast<std::size_t>(std::count(moved.begin(), moved.end(), 1)), count);
+  std::vector<std::uint8_t> one_thread = kept;
+  pcl::cocone::relaxDecimatedSample(voronoi, none, 5, 1, one_thread);
+  EXPECT_EQ(one_thread, moved) << "depends on the thread count";
+
+  std::vector<std::uint8_t> held = kept;
+  EXPECT_EQ(pcl::cocone::relaxDecimatedSample(voronoi, all, 5, 0, held), 0u);
+  EXPECT_EQ(held, kept);
+  std::vector<std::uint8_t> untouched = kept;
+  EXPECT_EQ(pcl::cocone::relaxDecimatedSample(voronoi, none, 0, 0, untouched), 0u);
+  EXPECT_EQ(untouched, kept);
+  std::vector<std::uint8_t> short_flags(10, 0);
+  EXPECT_EQ(pcl::cocone::relaxDecimatedSample(voronoi, short_flags, 5, 0, untouched),
+            0u);
+  EXPECT_EQ(untouched, kept);
 }
 
 // A closed surface has no rim: thinning rims changes nothing.
@@ -1247,6 +1394,12 @@ TEST(VoronoiDecimation, OutOfRangeParametersAreRefused)
     decimation.setCoconeAngle(bad);
     EXPECT_DOUBLE_EQ(decimation.getCoconeAngle(), kPi / 8) << bad;
   }
+  for (const unsigned bad : {1001u, 1000000u}) {
+    decimation.setRelaxationIterations(bad);
+    EXPECT_EQ(decimation.getRelaxationIterations(), 10u) << bad;
+  }
+  decimation.setRelaxationIterations(0);
+  EXPECT_EQ(decimation.getRelaxationIterations(), 0u);
   decimation.setRatioBound(10);
   EXPECT_DOUBLE_EQ(decimation.getRatioBound(), 10);
   decimation.setCoconeAngle(0.2);

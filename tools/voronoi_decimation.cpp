@@ -10,6 +10,7 @@
 // on.
 #include "tool_common.h"
 
+#include <pcl/cocone/parameters.h>
 #include <pcl/cocone/voronoi_decimation.h>
 #include <pcl/common/io.h>
 #include <pcl/console/print.h>
@@ -36,7 +37,13 @@ commandLine()
        flagOption("-keep_rims",
                   "DECIMATE as published: keep the outermost row of an open surface at "
                   "its input density (by default rims are thinned like the rest)"),
-       threadsOption(), verboseOption()});
+       {"-relax", ValueKind::integer, "N",
+        "rounds of relaxation after DECIMATE: the kept points are evened out at the "
+        "same count (Lloyd's iteration over the input points; rims and sharp features "
+        "stay); 0 gives DECIMATE's own points",
+        10, "", pcl::cocone::kRelaxationIterationsRange},
+       threadsOption(),
+       verboseOption()});
 }
 
 pcl::Indices
@@ -47,12 +54,14 @@ decimate(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLine&
   decimation.setRatioBound(cmd.value("-rho"));
   decimation.setCoconeAngle(cmd.value("-theta"));
   decimation.setThinRims(!cmd.flag("-keep_rims"));
+  decimation.setRelaxationIterations(cmd.count("-relax"));
   decimation.setNumberOfThreads(cmd.count("-threads"));
   if (cmd.verbose())
     printDetail("Parameters",
                 "rho " + formatNumber(decimation.getRatioBound()) + ", theta " +
                     formatNumber(decimation.getCoconeAngle()) + " rad, rims " +
-                    (decimation.getThinRims() ? "thinned" : "kept"));
+                    (decimation.getThinRims() ? "thinned" : "kept") + ", relaxation " +
+                    std::to_string(decimation.getRelaxationIterations()) + " rounds");
 
   pcl::Indices kept;
   computeStage("the decimation", "points kept",

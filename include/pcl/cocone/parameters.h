@@ -62,6 +62,8 @@ constexpr ParameterRange kTrueBoundaryRatioRange{0.5, 1000, false, false};
 /** \brief Valid range of the number of rings of the optional boundary band: [0, 64],
  * rings of cocone neighbours. */
 constexpr ParameterRange kBandRingsRange{0, 64, false, false};
+/** \brief Valid range of the number of relaxation rounds after DECIMATE: [0, 1000]. */
+constexpr ParameterRange kRelaxationIterationsRange{0, 1000, false, false};
 
 /** \brief Whether \a value may be set; if not, says so with PCL_ERROR, e.g.
  * "[pcl::CoconeReconstruction::setRatioBound] rho = -1 is outside (0, 10]; keeping

@@ -131,7 +131,12 @@ struct DecimationLevels
   std::vector<double> level;
   double largest_ratio_bound = 0; ///< the rho the run went up to (dimensionless)
   std::size_t removals = 0;       ///< samples removed (duplicates not counted)
+  /** BOUNDARY's flags (default parameters) per sample, when the run computed them
+   * (thin_rims); empty otherwise. */
+  std::vector<std::uint8_t> boundary;
 };
+
+
 
 /** \brief Voronoi cell geometry of a point sample: one 3D Delaunay triangulation, and per
  * sample its poles, pole vector, height, cocone radius and the Delaunay triangles its
@@ -404,6 +409,30 @@ private:
   double cocone_angle_;
   unsigned threads_ = 0;
 };
+
+/** \brief Beyond the paper: evens out a decimated sample, keeping its size.
+ *
+ * Lloyd's iteration restricted to the input: each kept sample moves to the input sample
+ * nearest the centroid of the samples whose nearest kept sample it is (weighted by the
+ * share of the surface each stands for, its squared cocone radius on the full sample),
+ * until none moves or \a iterations rounds are done. A kept sample stays where it is
+ * when it, or a sample of its cluster, is \a fixed. Deterministic.
+ * \param[in] voronoi the diagram of the full sample, from compute(); decimate() may have
+ *            run since (only positions and cocone radii are read)
+ * \param[in] fixed per sample (size voronoi.size()): 1 for samples that must not move
+ *            and hold the kept sample nearest them (BOUNDARY's flags: rims, sharp
+ *            features)
+ * \param[in] iterations at most this many rounds (0: nothing changes)
+ * \param[in] threads worker threads (0: every core)
+ * \param[in,out] kept per sample (size voronoi.size()): 1 for a kept sample; the count
+ *            never changes, duplicates are never chosen
+ * \return the number of moves made; 0 also when a size does not match */
+PCL_COCONE_EXPORT std::size_t
+relaxDecimatedSample(const VoronoiCocone& voronoi,
+                     const std::vector<std::uint8_t>& fixed,
+                     unsigned iterations,
+                     unsigned threads,
+                     std::vector<std::uint8_t>& kept);
 
 } // namespace cocone
 } // namespace pcl

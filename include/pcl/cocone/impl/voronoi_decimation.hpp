@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
+#include <pcl/cocone/boundary_samples.h>
 #include <pcl/cocone/cloud_samples.h>
 #include <pcl/cocone/parameters.h>
 #include <pcl/cocone/voronoi_cocone.h>
@@ -8,6 +9,7 @@
 #include <pcl/console/print.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace pcl {
@@ -31,8 +33,18 @@ VoronoiDecimation<PointT>::setCoconeAngle(double theta)
 }
 
 template <typename PointT>
+void
+VoronoiDecimation<PointT>::setRelaxationIterations(unsigned iterations)
+{
+  if (cocone::acceptParameter(getClassName(), "setRelaxationIterations", "iterations",
+                              iterations, cocone::kRelaxationIterationsRange,
+                              relaxation_iterations_))
+    relaxation_iterations_ = iterations;
+}
+
+template <typename PointT>
 bool
-VoronoiDecimation<PointT>::decimate(double rho)
+VoronoiDecimation<PointT>::decimate(double rho, bool relax)
 {
   removal_levels_.assign(input_->size(), std::numeric_limits<double>::quiet_NaN());
   error_message_.clear();
@@ -44,11 +56,34 @@ VoronoiDecimation<PointT>::decimate(double rho)
   voronoi.setCoconeAngle(cocone_angle_);
   voronoi.setNumberOfThreads(threads_);
   cocone::DecimationLevels levels;
-  if (voronoi.compute(samples) != cocone::Status::ok ||
-      voronoi.decimate(rho, levels, nullptr, thin_rims_) != cocone::Status::ok) {
+  const bool relaxing = relax && relaxation_iterations_ > 0;
+  std::vector<std::uint8_t> fixed; // BOUNDARY's flags: computed by decimate() with rims thinned
+  const bool ok = voronoi.compute(samples) == cocone::Status::ok;
+  if (ok && relaxing && !thin_rims_)
+    cocone::detectBoundarySamples(voronoi, cocone::BoundaryParameters(), fixed);
+  if (!ok || voronoi.decimate(rho, levels, nullptr, thin_rims_) != cocone::Status::ok) {
     error_message_ = voronoi.errorMessage();
     PCL_ERROR("[pcl::%s::filter] %s.\n", getClassName().c_str(), error_message_.c_str());
     return false;
+  }
+  if (relaxing) {
+    if (thin_rims_)
+      fixed = std::move(levels.boundary);
+    std::vector<std::uint8_t> kept(samples.size(), 0);
+    for (std::size_t s = 0; s < samples.size(); ++s)
+      kept[s] = levels.level[s] >= rho;
+    const std::size_t moves = cocone::relaxDecimatedSample(
+        voronoi, fixed, relaxation_iterations_, threads_, kept);
+    // The levels stay true to the output: a sample moved to is kept at rho, one moved
+    // from is removed just below it. Both stay kept at every smaller rho, so the sets
+    // still nest (the smaller ones are DECIMATE's own).
+    for (std::size_t s = 0; s < samples.size(); ++s) {
+      if (kept[s] && !(levels.level[s] >= rho))
+        levels.level[s] = rho;
+      else if (!kept[s] && levels.level[s] >= rho)
+        levels.level[s] = std::nextafter(rho, 0.0);
+    }
+    PCL_DEBUG("[pcl::%s::filter] relaxation: %zu moves.\n", getClassName().c_str(), moves);
   }
   for (std::size_t s = 0; s < samples.size(); ++s)
     removal_levels_[cloud_index[s]] = levels.level[s];
@@ -63,7 +98,7 @@ VoronoiDecimation<PointT>::applyFilter(Indices& indices)
 {
   indices.clear();
   removed_indices_->clear();
-  if (!decimate(ratio_bound_))
+  if (!decimate(ratio_bound_, true))
     return;
   for (const pcl::index_t i : *indices_) {
     const double level = removal_levels_[i];
@@ -91,7 +126,8 @@ VoronoiDecimation<PointT>::computeLevelsOfDetail(const std::vector<double>& rati
       return false;
   if (!this->initCompute())
     return false;
-  const bool ok = decimate(*std::max_element(ratio_bounds.begin(), ratio_bounds.end()));
+  const bool ok =
+      decimate(*std::max_element(ratio_bounds.begin(), ratio_bounds.end()), false);
   if (ok) {
     kept.resize(ratio_bounds.size());
     for (std::size_t k = 0; k < ratio_bounds.size(); ++k)
