@@ -61,20 +61,21 @@ struct SiteGraph
                          static_cast<SampleIndex>(k));
     }
     detail::Delaunay dt(input.begin(), input.end());
+    // Per vertex through its incident cells (CGAL's edge iterator, which circulates
+    // around every edge to name it once, took a quarter of the bunny's decimation).
     offsets.assign(sites.size() + 1, 0);
-    for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
-      ++offsets[e->first->vertex(e->second)->info() + 1];
-      ++offsets[e->first->vertex(e->third)->info() + 1];
-    }
-    for (std::size_t k = 0; k < sites.size(); ++k)
-      offsets[k + 1] += offsets[k];
-    neighbours.resize(offsets.back());
-    std::vector<std::uint32_t> fill(offsets.begin(), offsets.end() - 1);
-    for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
-      const SampleIndex a = e->first->vertex(e->second)->info();
-      const SampleIndex b = e->first->vertex(e->third)->info();
-      neighbours[fill[a]++] = b;
-      neighbours[fill[b]++] = a;
+    neighbours.clear();
+    std::vector<detail::VertexHandle> adjacent;
+    std::vector<detail::VertexHandle> vertex_of(sites.size());
+    for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
+      vertex_of[v->info()] = v;
+    for (std::size_t k = 0; k < sites.size(); ++k) {
+      adjacent.clear();
+      if (vertex_of[k] != detail::VertexHandle())
+        dt.finite_adjacent_vertices(vertex_of[k], std::back_inserter(adjacent));
+      for (const detail::VertexHandle& w : adjacent)
+        neighbours.push_back(w->info());
+      offsets[k + 1] = static_cast<std::uint32_t>(neighbours.size());
     }
   }
 
@@ -207,7 +208,11 @@ relaxDecimatedSample(const VoronoiCocone& voronoi,
       ++moved;
     }
     moves += moved;
-    if (moved == 0)
+    // Most of the gain comes in the first rounds, and a round costs a triangulation of
+    // the kept samples: stop when fewer than 1% of them move (the bunny at rho 0.3:
+    // 2031, 465, 78, then 19, 1, 1, 0 of 14087; its scan makes CGAL take 0.09 s a
+    // round).
+    if (moved * 100 < sites.size())
       break;
   }
   return moves;

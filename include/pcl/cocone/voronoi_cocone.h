@@ -415,8 +415,9 @@ private:
  * Lloyd's iteration restricted to the input: each kept sample moves to the input sample
  * nearest the centroid of the samples whose nearest kept sample it is (weighted by the
  * share of the surface each stands for, its squared cocone radius on the full sample),
- * until none moves or \a iterations rounds are done. A kept sample stays where it is
- * when it, or a sample of its cluster, is \a fixed. Deterministic.
+ * until fewer than 1% of the kept samples move in a round, or \a iterations rounds.
+ * A kept sample stays where it is when it, or a sample of its cluster, is \a fixed.
+ * Deterministic.
  * \param[in] voronoi the diagram of the full sample, from compute(); decimate() may have
  *            run since (only positions and cocone radii are read)
  * \param[in] fixed per sample (size voronoi.size()): 1 for samples that must not move
