@@ -112,10 +112,10 @@ struct SiteGraph
 // samples stay close to each other wherever a gap opened beside them. At the same
 // count, a regular grid covers a surface of nearly constant feature size more evenly
 // (the benchmark's peers on the sphere, torus and genus 3). Lloyd's iteration
-// restricted to the input evens the sample out and keeps its size. Rounds are cheap
-// (the Delaunay graph of the kept samples, and a short walk on it per sample) and
-// converge in a few: on the 10k shapes of the benchmark, 10 and 30 rounds give the same
-// errors.
+// restricted to the input evens the sample out and keeps its size. A round is the
+// Delaunay graph of the kept samples and a short walk on it per sample; the rounds
+// converge in a few (on the 10k shapes of the benchmark, 10 and 30 rounds give the same
+// errors).
 std::size_t
 relaxDecimatedSample(const VoronoiCocone& voronoi,
                      const std::vector<std::uint8_t>& fixed,
