@@ -197,11 +197,17 @@ private:
   /** True when mesh triangle t traverses the edge a -> b. */
   bool traverses(std::uint32_t t, SampleIndex a, SampleIndex b) const
   {
+    return edgeSlot(t, a, b) >= 0;
+  }
+  /** The k for which mesh triangle t's edge k is a -> b; -1 when it has no such edge.
+   */
+  int edgeSlot(std::uint32_t t, SampleIndex a, SampleIndex b) const
+  {
     const TriangleIndices& o = oriented_[t];
     for (int k = 0; k < 3; ++k)
       if (o[k] == a && o[(k + 1) % 3] == b)
-        return true;
-    return false;
+        return k;
+    return -1;
   }
   Vector orientedNormal(const TriangleIndices& o) const
   {
@@ -770,10 +776,9 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
       if (across[e] == kNoTriangle)
         continue;
       closed_edges_[best] |= static_cast<std::uint8_t>(1u << (e + 1));
-      const TriangleIndices& m = oriented_[across[e]];
-      for (int k = 0; k < 3; ++k)
-        if (m[k] == new_edges[e].second && m[(k + 1) % 3] == new_edges[e].first)
-          closed_edges_[across[e]] |= static_cast<std::uint8_t>(1u << k);
+      // The triangle there traverses the edge the other way (the guards checked).
+      const int k = edgeSlot(across[e], new_edges[e].second, new_edges[e].first);
+      closed_edges_[across[e]] |= static_cast<std::uint8_t>(1u << k);
     }
   }
   return {Step::added, best};

@@ -129,12 +129,13 @@ relaxDecimatedSample(const VoronoiCocone& voronoi,
   const std::vector<Eigen::Vector3d>& points = voronoi.centeredPoints();
   const std::vector<double> share = surfaceShares(voronoi);
   std::size_t moves = 0;
-  std::vector<SampleIndex> sites, owner(n, kNoSample), nearest(n);
-  std::vector<Eigen::Vector3d> centroid(n);
-  std::vector<double> mass(n), nearest2(n);
-  std::vector<std::uint8_t> held(n);
-  // slot_of: a site's position in sites; moved_to: where a site moved in the last
-  // round.
+  // owner: each sample's nearest kept sample; slot_of: a kept sample's position in
+  // sites, which indexes the per-cluster arrays; moved_to: where a kept sample moved in
+  // the last round.
+  std::vector<SampleIndex> sites, owner(n, kNoSample), nearest;
+  std::vector<Eigen::Vector3d> centroid;
+  std::vector<double> mass, nearest2;
+  std::vector<std::uint8_t> held;
   std::vector<std::uint32_t> slot_of(n, 0);
   std::vector<SampleIndex> moved_to(n, kNoSample);
   SiteGraph graph;
@@ -170,37 +171,36 @@ relaxDecimatedSample(const VoronoiCocone& voronoi,
     // holds a fixed sample stays too (it borders a rim or a sharp feature, where the
     // centroid lies on the inner side: on the 10k monkey saddle moving those left 158
     // of 313 samples flagged by the reconstruction, against 130, and a notch at the rim).
-    for (const SampleIndex s : sites) {
-      centroid[s].setZero();
-      mass[s] = 0;
-      held[s] = fixed[s];
-      nearest[s] = s;
-      nearest2[s] = std::numeric_limits<double>::infinity();
-    }
+    const std::size_t m = sites.size();
+    centroid.assign(m, Eigen::Vector3d::Zero());
+    mass.assign(m, 0);
+    held.assign(m, 0);
+    nearest.assign(sites.begin(), sites.end());
+    nearest2.assign(m, std::numeric_limits<double>::infinity());
     for (SampleIndex i = 0; i < n; ++i)
       if (share[i] > 0) {
-        const SampleIndex s = owner[i];
-        centroid[s] += share[i] * points[i];
-        mass[s] += share[i];
-        held[s] = held[s] || fixed[i];
+        const std::uint32_t k = slot_of[owner[i]];
+        centroid[k] += share[i] * points[i];
+        mass[k] += share[i];
+        held[k] = held[k] || fixed[i];
       }
-    for (const SampleIndex s : sites)
-      centroid[s] /= mass[s]; // a site owns itself: mass > 0
+    for (std::size_t k = 0; k < m; ++k)
+      centroid[k] /= mass[k]; // a kept sample is its own nearest: mass > 0
     // The sample of each cluster nearest its centroid (ties to the smaller index).
     for (SampleIndex i = 0; i < n; ++i) {
       if (!(share[i] > 0))
         continue;
-      const SampleIndex s = owner[i];
-      const double d2 = (points[i] - centroid[s]).squaredNorm();
-      if (d2 < nearest2[s]) {
-        nearest2[s] = d2;
-        nearest[s] = i;
+      const std::uint32_t k = slot_of[owner[i]];
+      const double d2 = (points[i] - centroid[k]).squaredNorm();
+      if (d2 < nearest2[k]) {
+        nearest2[k] = d2;
+        nearest[k] = i;
       }
     }
     std::size_t moved = 0;
-    for (const SampleIndex s : sites) {
-      const SampleIndex to = nearest[s];
-      if (held[s] || to == s || kept[to])
+    for (std::size_t k = 0; k < m; ++k) {
+      const SampleIndex s = sites[k], to = nearest[k];
+      if (held[k] || to == s || kept[to])
         continue;
       kept[s] = 0;
       kept[to] = 1;
