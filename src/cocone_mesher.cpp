@@ -14,6 +14,7 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -248,8 +249,10 @@ private:
   template <typename F> void forEachCell(const Vector& low, const Vector& high, F&& f) const;
   double cellCount(const Vector& low, const Vector& high) const;
   void gridInsert(std::uint32_t t);
-  void meshNear(const Vector& low, const Vector& high, std::vector<std::uint32_t>& nearby);
-  void meshNear(const TriangleIndices& t, std::vector<std::uint32_t>& nearby);
+  void buildGrid();
+  void meshNear(const Vector& low, const Vector& high,
+                std::vector<std::uint32_t>& nearby) const;
+  void meshNear(const TriangleIndices& t, std::vector<std::uint32_t>& nearby) const;
   bool crossesMesh(std::uint32_t t);
   double area(const std::vector<std::uint32_t>& triangles) const;
   std::size_t labelFans(SampleIndex v, std::vector<std::uint32_t>& fan,
@@ -303,10 +306,10 @@ private:
   std::vector<Incidence> incidence_;
   std::vector<std::uint32_t> group_start_; // group g spans [start[g], start[g + 1])
 
-  // A uniform grid over the mesh triangles' bounding boxes, built on first use by the
-  // checks that added triangles cross nothing (a fill across a hole can meet a part
-  // of the surface that is near in space but far along it). Triangles added later are
-  // entered as they come; removed ones stay listed and are skipped by state.
+  // A uniform grid over the mesh triangles' bounding boxes, built (buildGrid) by the
+  // first check that added triangles cross nothing (a fill across a hole can meet a
+  // part of the surface that is near in space but far along it). Triangles added later
+  // are entered as they come; removed ones stay listed and are skipped by state.
   // A triangle that would span more than kMostGridCells cells (a fill across a wide
   // hole, or the sparse background of a depth image, where triangles are far longer
   // than the mean) is kept in large_ instead, and every query looks at it: on PCL's
@@ -314,6 +317,7 @@ private:
   using CellKey = std::uint64_t;
   std::unordered_map<CellKey, std::vector<std::uint32_t> > grid_;
   std::vector<std::uint32_t> large_;
+  std::vector<Box> large_boxes_; // of the triangles of large_, in the same order
   double grid_cell_ = 0;
   std::unordered_map<SampleIndex, std::vector<std::uint32_t> > late_; // added since
   std::vector<std::uint32_t> mesh_degree_; // mesh triangles at each sample
@@ -1372,6 +1376,7 @@ Mesher::gridInsert(std::uint32_t t)
   const auto [low, high] = boundingBox(oriented_[t]);
   if (cellCount(low, high) > kMostGridCells) {
     large_.push_back(t);
+    large_boxes_.push_back({low, high});
     return;
   }
   forEachCell(low, high, [&](CellKey key) { grid_[key].push_back(t); });
@@ -1379,32 +1384,40 @@ Mesher::gridInsert(std::uint32_t t)
 
 // Mesh triangles whose grid cells meet those of t.
 void
-Mesher::meshNear(const TriangleIndices& t, std::vector<std::uint32_t>& nearby)
+Mesher::meshNear(const TriangleIndices& t, std::vector<std::uint32_t>& nearby) const
 {
   const auto [low, high] = boundingBox(t);
   meshNear(low, high, nearby);
 }
 
+// Enters the mesh triangles into the grid, once (enterMesh keeps it up to date).
+void
+Mesher::buildGrid()
+{
+  if (grid_cell_ > 0)
+    return;
+  double edges = 0;
+  std::size_t count = 0;
+  for (std::uint32_t u = 0; u < pool_.size(); ++u)
+    if (state_[u] == kInMesh) {
+      edges += (points_[oriented_[u][0]] - points_[oriented_[u][1]]).norm();
+      ++count;
+    }
+  grid_cell_ = count > 0 && edges > 0 ? 2 * edges / static_cast<double>(count) : 1;
+  for (std::uint32_t u = 0; u < pool_.size(); ++u)
+    if (state_[u] == kInMesh)
+      gridInsert(u);
+}
+
 // Mesh triangles whose grid cells meet those of the box [low, high], or whose own box
 // meets it: a superset of the triangles that can touch the box, sorted. (Callers only
 // keep the triangles that an exact test finds touching, so which superset it is does
-// not change their results.)
+// not change their results.) Read-only: threads may query at once. Needs buildGrid().
 void
-Mesher::meshNear(const Vector& low, const Vector& high, std::vector<std::uint32_t>& nearby)
+Mesher::meshNear(const Vector& low, const Vector& high,
+                 std::vector<std::uint32_t>& nearby) const
 {
-  if (grid_cell_ == 0) {
-    double edges = 0;
-    std::size_t count = 0;
-    for (std::uint32_t u = 0; u < pool_.size(); ++u)
-      if (state_[u] == kInMesh) {
-        edges += (points_[oriented_[u][0]] - points_[oriented_[u][1]]).norm();
-        ++count;
-      }
-    grid_cell_ = count > 0 && edges > 0 ? 2 * edges / static_cast<double>(count) : 1;
-    for (std::uint32_t u = 0; u < pool_.size(); ++u)
-      if (state_[u] == kInMesh)
-        gridInsert(u);
-  }
+  assert(grid_cell_ > 0);
   nearby.clear();
   const Box box{low, high};
   const auto take_if_near = [&](std::uint32_t u) {
@@ -1425,8 +1438,10 @@ Mesher::meshNear(const Vector& low, const Vector& high, std::vector<std::uint32_
       for (const std::uint32_t u : cell.second)
         take_if_near(u);
   }
-  for (const std::uint32_t u : large_)
-    take_if_near(u);
+  // Every query meets the large ones: their boxes are kept in a flat array.
+  for (std::size_t k = 0; k < large_.size(); ++k)
+    if (!boxesApart(large_boxes_[k], box) && state_[large_[k]] == kInMesh)
+      nearby.push_back(large_[k]);
   std::sort(nearby.begin(), nearby.end());
   nearby.erase(std::unique(nearby.begin(), nearby.end()), nearby.end());
 }
@@ -1435,6 +1450,7 @@ Mesher::meshNear(const Vector& low, const Vector& high, std::vector<std::uint32_
 bool
 Mesher::crossesMesh(std::uint32_t t)
 {
+  buildGrid();
   meshNear(oriented_[t], near_);
   for (const std::uint32_t u : near_)
     if (u != t && trianglesIntersect(points_, oriented_[t], oriented_[u]))
@@ -1504,6 +1520,7 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
   // Every fill triangle lies in the loop's bounding box: gather the mesh there once,
   // rather than for each of the O(m^3) candidates, and sift it by bounding boxes.
   const auto [low, high] = boundingBox(loop);
+  buildGrid();
   meshNear(low, high, near_);
   std::vector<Box> boxes;
   boxes.reserve(near_.size());
@@ -1842,118 +1859,62 @@ Mesher::insertUnusedSamples()
 // The walk takes restricted Delaunay triangles, which cannot cross on a well-sampled
 // surface; where samples are undersampled or noisy (boundary samples), and where
 // triangles were added by stitching or insertion, nothing rules it out. Those
-// triangles are checked against the mesh triangles at their corners' Delaunay
-// neighbours (what can reach them: a triangle crossing a small one has a corner next
-// to it), and of each crossing pair the one added last is removed; the holes this
-// leaves are stitched like the others (fills are checked already). Returns the number
-// of triangles removed.
+// triangles are checked against every mesh triangle near them (the grid of the
+// fills' checks), and of each crossing pair the one added last is removed; the holes
+// this leaves are stitched like the others (fills are checked already). Returns the
+// number of triangles removed.
 std::size_t
 Mesher::removeCrossings()
 {
   const std::vector<std::uint8_t>& boundary = report_.boundary_samples;
   std::vector<std::uint32_t> suspects;
+  std::vector<std::uint8_t> is_suspect(pool_.size(), 0);
   for (std::uint32_t t = 0; t < pool_.size(); ++t) {
     const TriangleIndices& o = oriented_[t];
     if (state_[t] == kInMesh && (group_[t] != kCoconeGroup || boundary[o[0]] ||
-                                 boundary[o[1]] || boundary[o[2]]))
+                                 boundary[o[1]] || boundary[o[2]])) {
       suspects.push_back(t);
+      is_suspect[t] = 1;
+    }
   }
   if (suspects.empty())
     return 0;
 
-  // The Delaunay neighbours of every corner, looked up once each (in parallel) rather
-  // than once per suspect triangle at it.
-  std::vector<SampleIndex> corners;
-  for (const std::uint32_t t : suspects)
-    corners.insert(corners.end(), oriented_[t].begin(), oriented_[t].end());
-  std::sort(corners.begin(), corners.end());
-  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
-  std::vector<std::vector<SampleIndex> > adjacency(corners.size());
-  // Stitching added many triangles since the incidence lists were built; with them
-  // rebuilt, the pass below reads flat lists instead of looking up late additions.
-  rebuildIncidence();
-
   // Every crossing pair (suspect, mesh triangle), found in parallel without changing
-  // anything; the mesh triangles that can reach t are those at its corners and at
-  // their Delaunay neighbours (a triangle crossing a small one has a corner next to
-  // it). Samples and triangles already looked at for suspect i carry the stamp i (per
-  // thread), so nothing is sorted; the crossings are listed in increasing order.
-  constexpr std::uint32_t kNoStamp = std::numeric_limits<std::uint32_t>::max();
+  // anything, listed in increasing order; a pair of two suspects only from the
+  // earlier one (the removals below never need it from the later one: by then one of
+  // the two is out of the mesh, see there). The grid answers from the suspect's box
+  // alone; looking through the triangles at its corners' Delaunay neighbours instead
+  // read some 30 incidence lists per suspect and cost twice as much (PCL's table scene:
+  // 1.1 s against 0.55 s), and could miss a crossing triangle with no corner there.
+  buildGrid();
   std::vector<std::vector<std::uint32_t> > crossing(suspects.size());
-  tbb::enumerable_thread_specific<
-      std::pair<std::vector<std::uint32_t>, std::vector<std::uint32_t> > >
-      stamps([&] {
-        return std::make_pair(std::vector<std::uint32_t>(n_, kNoStamp),
-                              std::vector<std::uint32_t>(pool_.size(), kNoStamp));
-      });
-  // The box of each sample's fan of mesh triangles: a neighbour whose fan is apart from
-  // a suspect's box has no triangle that can cross it, and is passed over without
-  // reading its triangles (most of the neighbours of a suspect's corners are).
-  std::vector<Box> fan_box(n_);
-  const auto findFanBoxes = [&](const tbb::blocked_range<SampleIndex>& range) {
-    for (SampleIndex v = range.begin(); v != range.end(); ++v) {
-      Box& box = fan_box[v];
-      box = {points_[v], points_[v]};
-      for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1]; ++k)
-        if (state_[incidence_[k].triangle] == kInMesh)
-          for (const SampleIndex w : incidence_[k].other) {
-            box.first = box.first.cwiseMin(points_[w]);
-            box.second = box.second.cwiseMax(points_[w]);
-          }
-    }
-  };
+  tbb::enumerable_thread_specific<std::vector<std::uint32_t> > scratch;
   const auto findCrossings = [&](const tbb::blocked_range<std::size_t>& range) {
-    auto& [sample_stamp, triangle_stamp] = stamps.local();
+    std::vector<std::uint32_t>& nearby = scratch.local();
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const std::uint32_t stamp = static_cast<std::uint32_t>(i);
       const std::uint32_t t = suspects[i];
       const TriangleIndices& o = oriented_[t];
-      const Box box = boundingBox(o);
-      triangle_stamp[t] = stamp;
-      const auto visit = [&](SampleIndex v) {
-        if (sample_stamp[v] == stamp)
-          return;
-        sample_stamp[v] = stamp;
-        if (boxesApart(fan_box[v], box))
-          return;
-        for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1]; ++k) {
-          const std::uint32_t u = incidence_[k].triangle;
-          if (state_[u] != kInMesh || triangle_stamp[u] == stamp)
-            continue;
-          triangle_stamp[u] = stamp;
-          // Most are apart, which their boxes tell without the call (the exact test
-          // starts with the same strict comparison).
-          if (boxesApart(boundingBox(oriented_[u]), box))
-            continue;
-          if (trianglesIntersect(points_, o, oriented_[u]))
-            crossing[i].push_back(u);
-        }
-      };
-      for (const SampleIndex v : o) {
-        visit(v);
-        const std::size_t k = static_cast<std::size_t>(
-            std::lower_bound(corners.begin(), corners.end(), v) - corners.begin());
-        for (const SampleIndex w : adjacency[k])
-          visit(w);
-      }
-      std::sort(crossing[i].begin(), crossing[i].end());
+      const auto [low, high] = boundingBox(o);
+      meshNear(low, high, nearby);
+      for (const std::uint32_t u : nearby)
+        // Most are apart, which their boxes tell without the call (the exact test
+        // starts with the same strict comparison).
+        if ((u > t || !is_suspect[u]) &&
+            !boxesApart(boundingBox(oriented_[u]), {low, high}) &&
+            trianglesIntersect(points_, o, oriented_[u]))
+          crossing[i].push_back(u);
     }
   };
   detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, corners.size(), 256),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        for (std::size_t k = range.begin(); k != range.end(); ++k)
-                          voronoi_.delaunayNeighbours(corners[k], adjacency[k]);
-                      });
-    tbb::parallel_for(
-        tbb::blocked_range<SampleIndex>(0, static_cast<SampleIndex>(n_), 4096),
-        findFanBoxes);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, suspects.size(), 64), findCrossings);
   });
 
   // Of each crossing pair the triangle added last goes, suspects in order: removals
   // only shrink the mesh, so the pairs still both in it here are exactly those a
-  // sequential pass testing as it goes would meet.
+  // sequential pass testing as it goes would meet. (A suspect u crossing a later
+  // suspect t has met t here unless u left the mesh first: either way, by t's turn
+  // one of them is gone, which is why t's list need not hold u.)
   std::vector<std::uint32_t> gone;
   for (std::size_t i = 0; i < suspects.size(); ++i) {
     const std::uint32_t t = suspects[i];
