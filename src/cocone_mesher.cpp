@@ -1837,12 +1837,26 @@ Mesher::insertUnusedSamples()
                 {e1, v, apex_there},
                 {v, e0, apex_there}};
     }
+    // Most nearby triangles are apart from every split, which the boxes tell first.
+    Box splits_box = boundingBox(splits[0]);
+    for (const TriangleIndices& split : splits) {
+      const Box box = boundingBox(split);
+      splits_box = {splits_box.first.cwiseMin(box.first),
+                    splits_box.second.cwiseMax(box.second)};
+    }
     bool crossing = false;
-    for (const TriangleIndices& split : splits)
-      for (const std::uint32_t t : nearby)
-        if (std::find(replaced.begin(), replaced.end(), t) == replaced.end() &&
-            trianglesIntersect(points_, split, oriented_[t]))
+    for (const std::uint32_t t : nearby) {
+      if (crossing)
+        break;
+      if (std::find(replaced.begin(), replaced.end(), t) != replaced.end() ||
+          boxesApart(boundingBox(oriented_[t]), splits_box))
+        continue;
+      for (const TriangleIndices& split : splits)
+        if (trianglesIntersect(points_, split, oriented_[t])) {
           crossing = true;
+          break;
+        }
+    }
     if (crossing)
       continue;
     for (const std::uint32_t t : replaced)
