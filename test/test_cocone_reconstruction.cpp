@@ -45,6 +45,7 @@ struct Result
   MeshTopology topology;
   pcl::Indices unused;
   std::size_t stitched = 0;
+  std::size_t crossing_removed = 0;
 };
 
 /** Reconstructs \a cloud and checks what every output must satisfy. */
@@ -62,6 +63,7 @@ reconstruct(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud,
   result.triangles = toTriangles(polygons);
   result.unused = cocone.getUnusedIndices();
   result.stitched = cocone.getNumberOfStitchedTriangles();
+  result.crossing_removed = cocone.getReport().crossing_triangles;
   result.topology = expectValidSurface(toPoints(*cloud), result.triangles, label);
   // Boundary loops reported by the class are those of the output.
   EXPECT_EQ(cocone.getBoundaryLoops().size(), result.topology.boundary_loops.size())
@@ -71,7 +73,8 @@ reconstruct(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud,
             << cocone.getNumberOfLidTriangles() << " lid, "
             << cocone.getNumberOfPrunedTriangles() << " pruned, "
             << cocone.getNumberOfStitchedTriangles() << " stitched in "
-            << cocone.getNumberOfStitchedHoles() << " holes, " << result.unused.size()
+            << cocone.getNumberOfStitchedHoles() << " holes, "
+            << result.crossing_removed << " crossing removed, " << result.unused.size()
             << " unused points" << std::endl;
   return result;
 }
@@ -317,6 +320,38 @@ TEST(CoconeReconstruction, OutliersStayOut)
   EXPECT_EQ(result.topology.vertices, torus.points.size());
 }
 
+// Spheres whose samples are moved along the normal by noise of half a spacing, as in a
+// scan: boundary samples everywhere, holes stitched, samples put back, and triangles
+// laid through others, which the crossing check must find and remove. What is left is
+// a manifold without self-intersections (reconstruct() checks both) that stays on the
+// sphere: no fill cuts through its inside.
+TEST(CoconeReconstruction, NoisySpheresLeaveNoSelfIntersection)
+{
+  std::size_t crossing_removed = 0;
+  for (const std::uint32_t seed : {1u, 2u, 3u}) {
+    const SampledShape sphere = sampleSphere(8000, seed);
+    std::mt19937 random(seed);
+    std::normal_distribution<double> noise(0.0, 0.5 * sphere.spacing());
+    Points points = sphere.points;
+    for (Eigen::Vector3d& p : points)
+      p *= 1 + noise(random); // the unit sphere's normal at p is p
+    const std::string label = "sphere with noise, seed " + std::to_string(seed);
+    const Result result = reconstruct(toCloud(points), label);
+    crossing_removed += result.crossing_removed;
+    EXPECT_GT(result.stitched, 0u) << label;
+    EXPECT_GE(result.topology.vertices, points.size() * 95 / 100) << label;
+    double farthest = 0; // of a triangle's centroid from the sphere, in spacings
+    for (const TriangleIndices& t : result.triangles) {
+      const Eigen::Vector3d centroid = (points[t[0]] + points[t[1]] + points[t[2]]) / 3;
+      farthest = std::max(farthest, std::abs(centroid.norm() - 1) / sphere.spacing());
+    }
+    std::cout << "[ measured ] " << label << ": farthest centroid " << farthest
+              << " spacings off the sphere" << std::endl;
+    EXPECT_LT(farthest, 2.0) << label;
+  }
+  EXPECT_GT(crossing_removed, 0u);
+}
+
 // ---------------------------------------------------------------------------------
 // Real data (skipped when the data folder is absent).
 
@@ -543,6 +578,7 @@ TEST(CoconeReconstructionData, LidarTerrainStaysManifoldAndReportsItsLoops)
   const Result result = reconstruct(data.cloud, "lidar terrain");
   EXPECT_TRUE(result.topology.isManifold());
   EXPECT_GT(result.stitched, 0u);
+  EXPECT_GT(result.crossing_removed, 0u); // the crossing check has work here
   // Most of the surface is still covered.
   EXPECT_GE(result.topology.vertices, data.cloud->size() * 6 / 10);
 }

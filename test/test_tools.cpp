@@ -573,8 +573,9 @@ TEST_F(Tools, ReconstructionOptionsAreAcceptedAndVerboseShowsTheStages)
                          "-no_stitch", "-boundary_ratio", "3", "-theta", "0.35", "-rho",
                          "1", "-alpha", "0.6", "-threads", "2", "-v"});
   expectSuccess(r);
-  for (const std::string text : {"Parameters", "Candidate triangles", "Stitched holes",
-                                 "Unused points", "ms : ", "Computing"})
+  for (const std::string text :
+       {"Parameters", "Candidate triangles", "Stitched holes", "Samples put back",
+        "Crossing triangles removed", "Unused points", "ms : ", "Computing"})
     EXPECT_NE(r.out.find(text), std::string::npos) << text;
   // The class's own PCL_DEBUG statistics show with -v.
   EXPECT_NE(r.out.find("[pcl::CoconeReconstruction::reconstruct]"), std::string::npos);

@@ -124,6 +124,9 @@ reconstruct(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLi
                 std::to_string(cocone.getNumberOfStitchedHoles()) + " (" +
                     std::to_string(cocone.getNumberOfStitchedTriangles()) +
                     " triangles)");
+    printDetail("Samples put back", std::to_string(report.inserted_samples));
+    printDetail("Crossing triangles removed",
+                std::to_string(report.crossing_triangles));
     printDetail("Open boundary loops",
                 std::to_string(cocone.getBoundaryLoops().size()));
     printDetail("Unused points", std::to_string(cocone.getUnusedIndices().size()));
