@@ -170,7 +170,8 @@ relaxDecimatedSample(const VoronoiCocone& voronoi,
     // Each cluster's centroid, weighted by surface share; a kept sample whose cluster
     // holds a fixed sample stays too (it borders a rim or a sharp feature, where the
     // centroid lies on the inner side: on the 10k monkey saddle moving those left 158
-    // of 313 samples flagged by the reconstruction, against 130, and a notch at the rim).
+    // of 313 samples flagged by the reconstruction, against 130, and a notch at the
+    // rim).
     const std::size_t m = sites.size();
     centroid.assign(m, Eigen::Vector3d::Zero());
     mass.assign(m, 0);

@@ -136,8 +136,6 @@ struct DecimationLevels
   std::vector<std::uint8_t> boundary;
 };
 
-
-
 /** \brief Voronoi cell geometry of a point sample: one 3D Delaunay triangulation, and per
  * sample its poles, pole vector, height, cocone radius and the Delaunay triangles its
  * cocone marks.

@@ -31,8 +31,8 @@ namespace pcl {
  * Rims (beyond the paper, on by default, setThinRims): the cocone of a sample on the
  * rim of an open surface runs on past the last samples, so DECIMATE as published never
  * thins the outermost row (on a 10k monkey saddle at rho 0.4 it kept 252 of its 270
- * samples, and they were 252 of the 381 kept). Rim samples are therefore measured only on the side where
- * the surface is, and the rim is thinned like the rest.
+ * samples, and they were 252 of the 381 kept). Rim samples are therefore measured only
+ * on the side where the surface is, and the rim is thinned like the rest.
  *
  * Relaxation (beyond the paper, on by default, setRelaxationIterations): DECIMATE stops
  * where every kept sample borders a gap wider than rho h_p, which leaves kept samples

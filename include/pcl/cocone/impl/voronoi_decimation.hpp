@@ -58,7 +58,9 @@ VoronoiDecimation<PointT>::decimate(double rho, bool relax)
   voronoi.setNumberOfThreads(threads_);
   cocone::DecimationLevels levels;
   const bool relaxing = relax && relaxation_iterations_ > 0;
-  std::vector<std::uint8_t> fixed; // BOUNDARY's flags: computed by decimate() with rims thinned
+  // What the relaxation holds: BOUNDARY's flags on the full sample. decimate() computes
+  // them when it thins rims; otherwise they are needed before it changes the diagram.
+  std::vector<std::uint8_t> fixed;
   const bool ok = voronoi.compute(samples) == cocone::Status::ok;
   if (ok && relaxing && !thin_rims_)
     cocone::detectBoundarySamples(voronoi, cocone::BoundaryParameters(), fixed);
@@ -87,8 +89,8 @@ VoronoiDecimation<PointT>::decimate(double rho, bool relax)
       else if (!kept[s] && levels.level[s] >= rho)
         levels.level[s] = std::nextafter(rho, 0.0);
     }
-    PCL_DEBUG("[pcl::%s::filter] relaxation: %zu moves, %.3f s.\n", getClassName().c_str(),
-              moves, seconds);
+    PCL_DEBUG("[pcl::%s::filter] relaxation: %zu moves, %.3f s.\n",
+              getClassName().c_str(), moves, seconds);
   }
   for (std::size_t s = 0; s < samples.size(); ++s)
     removal_levels_[cloud_index[s]] = levels.level[s];
