@@ -306,19 +306,32 @@ BestRun::result() const
   return out;
 }
 
+std::vector<Measurement>
+takeTurns(int repeats, const std::vector<Contestant>& contestants,
+          double timeout_seconds)
+{
+  std::vector<BestRun> best(contestants.size());
+  for (int r = 0; r < std::max(1, repeats); ++r)
+    for (std::size_t k = 0; k < contestants.size(); ++k) {
+      if (r > 0 &&
+          (best[k].failed() || best[k].spent() >= contestants[k].budget_seconds))
+        continue;
+      best[k].add(runIsolated([&](Measurement& out) { contestants[k].body(r, out); },
+                              timeout_seconds));
+    }
+  std::vector<Measurement> results;
+  for (const BestRun& b : best)
+    results.push_back(b.result());
+  return results;
+}
+
 Measurement
 bestOf(int repeats,
        const std::function<void(int, Measurement&)>& body,
        double timeout_seconds,
        double budget_seconds)
 {
-  BestRun best;
-  for (int r = 0; r < std::max(1, repeats); ++r) {
-    if (r > 0 && (best.failed() || best.spent() >= budget_seconds))
-      break;
-    best.add(runIsolated([&](Measurement& out) { body(r, out); }, timeout_seconds));
-  }
-  return best.result();
+  return takeTurns(repeats, {{body, budget_seconds}}, timeout_seconds).front();
 }
 
 LoadSample

@@ -108,12 +108,28 @@ private:
   std::vector<double> times_;
 };
 
-/** \brief Runs \a body \a repeats times (each isolated) and keeps the fastest
- * successful run; \a body receives the repeat index (0 first: do quality checks only
- * there) and its measurement. The quality values of repeat 0 are kept. The peak memory
- * reported is the smallest of the runs (the runs do the same work). No further repeat
- * starts once the measured times add up to \a budget_seconds (slow peers run once or
- * twice). */
+/** \brief The budget of a method that runs in every round. */
+constexpr double kNoBudget = std::numeric_limits<double>::infinity();
+
+/** \brief One method timed by takeTurns: its body, which receives the round (0 first:
+ * do quality checks only there) and its measurement, and the budget after which it is
+ * not run again. */
+struct Contestant
+{
+  std::function<void(int, Measurement&)> body;
+  double budget_seconds = 60;
+};
+
+/** \brief Runs the contestants in turn, each isolated, for up to \a repeats rounds, and
+ * keeps each one's fastest successful run (BestRun). Taking turns means a burst of load
+ * on the shared machine hits every method of a comparison alike, so the ratios between
+ * them hold even when the absolute times do not. A contestant is not run again once it
+ * failed or its measured times add up to its budget (slow peers run once or twice).
+ * Results come in the contestants' order. */
+std::vector<Measurement>
+takeTurns(int repeats, const std::vector<Contestant>& contestants, double timeout_seconds);
+
+/** \brief takeTurns with one contestant. */
 Measurement
 bestOf(int repeats,
        const std::function<void(int, Measurement&)>& body,

@@ -308,16 +308,17 @@ main(int argc, char** argv)
                      ", busy " + percent(busyShare(s.second.first, s.second.second))});
   text << machine.markdown() << "\n";
   text << "The machine is a shared 2-core VM with CPU steal and other jobs compiling: "
-          "absolute times are noisy. Every Delaunay-based time is therefore also given as a "
-          "ratio to the bare CGAL Delaunay triangulation of the same points measured in the "
-          "same process run, and each time is the best of several isolated runs (3 up to "
-          "60k points, 2 above; the bare Delaunay, our core and ours take turns, so that a "
-          "burst of load hits all three alike; a peer is not run again once its runs add "
-          "up to 15 s). Peak "
-          "memory is the growth of the resident set of a forked child over the algorithm "
-          "alone (VmHWM after the run minus VmRSS before, the peak reset through "
-          "/proc/self/clear_refs); it includes the code pages of the shared libraries a "
-          "method touches for the first time (a few MB, which dominates on small inputs).\n\n";
+          "absolute times are noisy. Every Delaunay-based time is therefore also given as "
+          "a ratio to the bare CGAL Delaunay triangulation of the same points measured in "
+          "the same process run, and each time is the best of several isolated runs (3 up "
+          "to 250k points, 2 above). The methods compared on an input take turns, round "
+          "after round (the bare Delaunay, our core, ours, then each peer), so that a "
+          "burst of load hits all of them alike; a peer is not run again once its runs "
+          "add up to 15 s. Peak memory is the growth of the resident set of a forked "
+          "child over the algorithm alone (VmHWM after the run minus VmRSS before, the "
+          "peak reset through /proc/self/clear_refs); it includes the code pages of the "
+          "shared libraries a method touches for the first time (a few MB, which "
+          "dominates on small inputs).\n\n";
   text << "## Commands\n\n```\n";
   if (const char* invocation = std::getenv("PCL_COCONE_BENCH_INVOCATION"))
     text << invocation << "\n";

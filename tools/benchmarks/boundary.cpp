@@ -204,15 +204,16 @@ runBoundarySection(Context& context)
     Case c;
     c.input = input;
     const int repeats = Context::repeatsFor(input->size());
+    // Our settings and the peer's radii take turns (see takeTurns).
+    std::vector<std::string> names;
+    std::vector<Contestant> contestants;
     for (const OurSetting& setting : kOurSettings) {
       if (input->size() > 500000 && !setting.is_default)
         continue; // the time on the large input
-      c.runs.push_back({setting.name, bestOf(
-                                          repeats,
-                                          [&](int r, Measurement& m) {
-                                            runOurs(*input, setting, r == 0, m);
-                                          },
-                                          timeout)});
+      names.push_back(setting.name);
+      contestants.push_back(
+          {[&, setting](int r, Measurement& m) { runOurs(*input, setting, r == 0, m); },
+           kNoBudget});
     }
     c.peers = !(quick && input->size() >= 100000) && !context.options.no_peers;
     if (c.peers)
@@ -220,12 +221,14 @@ runBoundarySection(Context& context)
         const double radius = factor * input->spacing;
         std::ostringstream name;
         name << "BoundaryEstimation, radius " << factor << " spacings";
-        c.runs.push_back({name.str(), bestOf(repeats,
-                                             [&](int r, Measurement& m) {
-                                               runPcl(*input, radius, r == 0, m);
-                                             },
-                                             timeout, Context::kPeerBudget)});
+        names.push_back(name.str());
+        contestants.push_back(
+            {[&, radius](int r, Measurement& m) { runPcl(*input, radius, r == 0, m); },
+             Context::kPeerBudget});
       }
+    const std::vector<Measurement> results = takeTurns(repeats, contestants, timeout);
+    for (std::size_t k = 0; k < results.size(); ++k)
+      c.runs.push_back({names[k], results[k]});
     cases.push_back(std::move(c));
   }
 

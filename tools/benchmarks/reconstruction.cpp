@@ -287,35 +287,32 @@ runInput(Context& context, const Input& input)
   const int repeats = Context::repeatsFor(n);
   const double timeout = context.options.timeout;
   progress("reconstruction: " + input.name + " (" + std::to_string(n) + " points)");
-  // The floor, the core and ours take turns, so that a burst of load on the shared
-  // machine hits all three alike.
-  {
-    BestRun delaunay, core, ours;
-    for (int r = 0; r < repeats; ++r) {
-      delaunay.add(runIsolated([&](Measurement& m) { runDelaunay(input, m); }, timeout));
-      core.add(runIsolated([&](Measurement& m) { runCore(input, m); }, timeout));
-      ours.add(runIsolated([&](Measurement& m) { runCocone(input, r == 0, m); }, timeout));
-      if (delaunay.failed() || core.failed() || ours.failed())
-        break;
-    }
-    run.delaunay = delaunay.result();
-    run.core = core.result();
-    run.methods.push_back({kOurs, ours.result()});
-  }
+  // Every method takes its turn in each round, so that a burst of load on the shared
+  // machine hits the floor, ours and the peers alike. The floor, the core and ours run
+  // every round whatever their time: their ratios are the targets.
+  std::vector<Contestant> contestants = {
+      {[&](int, Measurement& m) { runDelaunay(input, m); }, kNoBudget},
+      {[&](int, Measurement& m) { runCore(input, m); }, kNoBudget},
+      {[&](int r, Measurement& m) { runCocone(input, r == 0, m); }, kNoBudget}};
   run.peers = !(context.options.quick && n >= kQuickPeerLimit) && !context.options.no_peers;
   if (run.peers) {
-    run.methods.push_back(
-        {kGreedy,
-         bestOf(repeats, [&](int r, Measurement& m) { runGreedyProjection(input, r == 0, m); },
-                timeout, Context::kPeerBudget)});
-    run.methods.push_back(
-        {kPoisson,
-         bestOf(repeats, [&](int r, Measurement& m) { runPoisson(input, r == 0, m); }, timeout,
-                Context::kPeerBudget)});
-    run.methods.push_back(
-        {kFront,
-         bestOf(repeats, [&](int r, Measurement& m) { runAdvancingFront(input, r == 0, m); },
-                timeout, Context::kPeerBudget)});
+    contestants.push_back(
+        {[&](int r, Measurement& m) { runGreedyProjection(input, r == 0, m); },
+         Context::kPeerBudget});
+    contestants.push_back({[&](int r, Measurement& m) { runPoisson(input, r == 0, m); },
+                           Context::kPeerBudget});
+    contestants.push_back(
+        {[&](int r, Measurement& m) { runAdvancingFront(input, r == 0, m); },
+         Context::kPeerBudget});
+  }
+  const std::vector<Measurement> results = takeTurns(repeats, contestants, timeout);
+  run.delaunay = results[0];
+  run.core = results[1];
+  run.methods.push_back({kOurs, results[2]});
+  if (run.peers) {
+    run.methods.push_back({kGreedy, results[3]});
+    run.methods.push_back({kPoisson, results[4]});
+    run.methods.push_back({kFront, results[5]});
   }
   std::ostringstream line;
   line << "  Delaunay " << seconds(run.delaunay.seconds) << " s";

@@ -83,12 +83,12 @@ public:
     return options.filter.empty() || name.find(options.filter) != std::string::npos;
   }
 
-  /** \brief Repeats for a run on \a n points: best of 3 for small inputs, 2 up to
-   * 200k, 1 above. */
+  /** \brief Rounds for the runs on \a n points: best of 3 up to 250k points (the
+   * inputs whose ratios to the peers are targets, the 1M torus excepted), 2 above. */
   static int
   repeatsFor(std::size_t n)
   {
-    return n <= 60000 ? 3 : 2;
+    return n <= 250000 ? 3 : 2;
   }
   /** \brief Time budget of the repeats of a peer (see bestOf): slow peers run once or
    * twice. */
