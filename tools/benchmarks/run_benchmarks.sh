@@ -30,5 +30,5 @@ if [[ -z "$binary" ]]; then
   exit 1
 fi
 
-export PCL_COCONE_BENCH_INVOCATION="tools/benchmarks/run_benchmarks.sh $build_dir $*"
+export PCL_COCONE_BENCH_INVOCATION="tools/benchmarks/run_benchmarks.sh $build_dir${*:+ $*}"
 exec "$binary" --markdown "$source_dir/docs/benchmarks.md" "$@"
