@@ -48,6 +48,51 @@ boxesApart(const Box& a, const Box& b)
 // See Mesher::large_.
 constexpr double kMostGridCells = 64;
 
+// Uniform grids of cubes of side `cell` over bounding boxes (Mesher::grid_ and the
+// suspects' grid of Mesher::removeCrossings).
+using CellKey = std::uint64_t;
+
+long
+cellIndex(double x, double cell)
+{
+  return static_cast<long>(std::floor(x / cell));
+}
+
+CellKey
+packCell(long x, long y, long z)
+{
+  return (static_cast<CellKey>(x & 0x1FFFFF) << 42) |
+         (static_cast<CellKey>(y & 0x1FFFFF) << 21) | static_cast<CellKey>(z & 0x1FFFFF);
+}
+
+// The cell that holds p.
+CellKey
+cellKey(const Vector& p, double cell)
+{
+  return packCell(cellIndex(p.x(), cell), cellIndex(p.y(), cell), cellIndex(p.z(), cell));
+}
+
+// Calls f(key) for every cell the box [low, high] meets.
+template <typename F>
+void
+forEachCellOf(const Vector& low, const Vector& high, double cell, F&& f)
+{
+  for (long x = cellIndex(low.x(), cell); x <= cellIndex(high.x(), cell); ++x)
+    for (long y = cellIndex(low.y(), cell); y <= cellIndex(high.y(), cell); ++y)
+      for (long z = cellIndex(low.z(), cell); z <= cellIndex(high.z(), cell); ++z)
+        f(packCell(x, y, z));
+}
+
+// The number of cells the box [low, high] meets (a double: it can be huge).
+double
+cellCountOf(const Vector& low, const Vector& high, double cell)
+{
+  double count = 1;
+  for (int axis = 0; axis < 3; ++axis)
+    count *= std::floor(high[axis] / cell) - std::floor(low[axis] / cell) + 1;
+  return count;
+}
+
 constexpr std::uint32_t kCoconeGroup = 0;
 constexpr std::uint32_t kNoTriangle = std::numeric_limits<std::uint32_t>::max();
 // Triangles of polygon fills (not Delaunay triangles): never offered to a walk.
@@ -283,6 +328,10 @@ private:
   std::vector<std::vector<SampleIndex> > traceLoops() const;
   void insertUnusedSamples();
   std::size_t removeCrossings();
+  template <typename Crosses>
+  void findCrossingsBySuspectGrid(const std::vector<std::uint32_t>& suspects,
+                                  const Crosses& crosses,
+                                  std::vector<std::vector<std::uint32_t> >& crossing) const;
   void orientClosedComponentsOutward();
 
   const VoronoiCocone& voronoi_;
@@ -314,7 +363,6 @@ private:
   // hole, or the sparse background of a depth image, where triangles are far longer
   // than the mean) is kept in large_ instead, and every query looks at it: on PCL's
   // stereo table scene some 900 of them spanned up to 150 000 cells each.
-  using CellKey = std::uint64_t;
   std::unordered_map<CellKey, std::vector<std::uint32_t> > grid_;
   std::vector<std::uint32_t> large_;
   std::vector<Box> large_boxes_; // of the triangles of large_, in the same order
@@ -1090,13 +1138,18 @@ Mesher::stitch(std::vector<std::vector<SampleIndex> >& loops)
   detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, loops.size(), 4), prepare);
   });
+  const std::size_t pool_before = pool_.size();
   for (std::size_t h = 0; h < loops.size(); ++h) {
     for (const auto& t : offered[h])
       addToPool({t[0], t[1], t[2]}, first_group + static_cast<std::uint32_t>(h));
     std::vector<std::array<SampleIndex, 3> >().swap(offered[h]);
     group_start_.push_back(static_cast<std::uint32_t>(pool_.size()));
   }
-  rebuildIncidence();
+  // Nothing new in the pool since the lists were built (every loop kept open, as a
+  // hemisphere's rim is): they are current, and rebuilding them would read the whole
+  // pool (0.3 s at a million samples).
+  if (pool_.size() != pool_before || !late_.empty())
+    rebuildIncidence();
   // A hole triangle that is a mesh triangle already is of no use.
   std::vector<std::uint32_t> same;
   for (std::uint32_t t = 0; t < pool_.size(); ++t) {
@@ -1348,26 +1401,13 @@ template <typename F>
 void
 Mesher::forEachCell(const Vector& low, const Vector& high, F&& f) const
 {
-  const auto index = [&](double x) {
-    return static_cast<long>(std::floor(x / grid_cell_));
-  };
-  for (long x = index(low.x()); x <= index(high.x()); ++x)
-    for (long y = index(low.y()); y <= index(high.y()); ++y)
-      for (long z = index(low.z()); z <= index(high.z()); ++z)
-        f((static_cast<CellKey>(x & 0x1FFFFF) << 42) |
-          (static_cast<CellKey>(y & 0x1FFFFF) << 21) |
-          static_cast<CellKey>(z & 0x1FFFFF));
+  forEachCellOf(low, high, grid_cell_, std::forward<F>(f));
 }
 
-// The number of grid cells the box [low, high] meets (a double: it can be huge).
 double
 Mesher::cellCount(const Vector& low, const Vector& high) const
 {
-  double count = 1;
-  for (int axis = 0; axis < 3; ++axis)
-    count *=
-        std::floor(high[axis] / grid_cell_) - std::floor(low[axis] / grid_cell_) + 1;
-  return count;
+  return cellCountOf(low, high, grid_cell_);
 }
 
 void
@@ -1873,6 +1913,79 @@ Mesher::insertUnusedSamples()
   report_.inserted_samples = inserted;
 }
 
+// The crossing pairs of removeCrossings when no fill has built the mesh's grid. The
+// suspects are then few (mostly the triangles at a rim's boundary samples), so a grid
+// of the suspects alone is asked by every mesh triangle, rather than a grid of the
+// whole mesh being built for them: on a 1M-point hemisphere, whose one loop (its rim)
+// stays open, stitching took 1.6 to 2.1 s with that grid, and 0.7 s without. Each pair
+// is tested once, in the cell that holds the low corner of the common part of the two
+// boxes, and the lists come out sorted, as the other way gives them.
+template <typename Crosses>
+void
+Mesher::findCrossingsBySuspectGrid(
+    const std::vector<std::uint32_t>& suspects, const Crosses& crosses,
+    std::vector<std::vector<std::uint32_t> >& crossing) const
+{
+  double edges = 0;
+  for (const std::uint32_t t : suspects)
+    edges += (points_[oriented_[t][0]] - points_[oriented_[t][1]]).norm();
+  const double cell = edges > 0 ? 2 * edges / static_cast<double>(suspects.size()) : 1;
+  std::vector<Box> boxes(suspects.size());
+  std::unordered_map<CellKey, std::vector<std::uint32_t> > by_cell; // suspect positions
+  std::vector<std::uint32_t> wide; // suspects over more than kMostGridCells cells
+  for (std::uint32_t i = 0; i < suspects.size(); ++i) {
+    boxes[i] = boundingBox(oriented_[suspects[i]]);
+    if (cellCountOf(boxes[i].first, boxes[i].second, cell) > kMostGridCells)
+      wide.push_back(i);
+    else
+      forEachCellOf(boxes[i].first, boxes[i].second, cell,
+                    [&](CellKey key) { by_cell[key].push_back(i); });
+  }
+
+  using Pair = std::pair<std::uint32_t, std::uint32_t>; // suspect position, triangle
+  tbb::enumerable_thread_specific<std::vector<Pair> > found;
+  const auto ask = [&](const tbb::blocked_range<std::uint32_t>& range) {
+    std::vector<Pair>& pairs = found.local();
+    for (std::uint32_t u = range.begin(); u != range.end(); ++u) {
+      if (state_[u] != kInMesh)
+        continue;
+      const Box box = boundingBox(oriented_[u]);
+      const auto test_in = [&](CellKey key, const std::vector<std::uint32_t>& listed) {
+        for (const std::uint32_t i : listed) {
+          const Vector corner = box.first.cwiseMax(boxes[i].first);
+          if (cellKey(corner, cell) == key && crosses(suspects[i], u, boxes[i]))
+            pairs.emplace_back(i, u);
+        }
+      };
+      if (cellCountOf(box.first, box.second, cell) <=
+          static_cast<double>(by_cell.size()))
+        forEachCellOf(box.first, box.second, cell, [&](CellKey key) {
+          const auto listed = by_cell.find(key);
+          if (listed != by_cell.end())
+            test_in(key, listed->second);
+        });
+      else // a triangle wider than the suspects' grid
+        for (const auto& [key, listed] : by_cell)
+          test_in(key, listed);
+      for (const std::uint32_t i : wide)
+        if (crosses(suspects[i], u, boxes[i]))
+          pairs.emplace_back(i, u);
+    }
+  };
+  detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
+    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(
+                          0, static_cast<std::uint32_t>(pool_.size()), 4096),
+                      ask);
+  });
+  std::vector<Pair> pairs;
+  for (const std::vector<Pair>& part : found)
+    pairs.insert(pairs.end(), part.begin(), part.end());
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  for (const auto& [i, u] : pairs)
+    crossing[i].push_back(u);
+}
+
 // The walk takes restricted Delaunay triangles, which cannot cross on a well-sampled
 // surface; where samples are undersampled or noisy (boundary samples), and where
 // triangles were added by stitching or insertion, nothing rules it out. Those
@@ -1900,33 +2013,40 @@ Mesher::removeCrossings()
   // Every crossing pair (suspect, mesh triangle), found in parallel without changing
   // anything, listed in increasing order; a pair of two suspects only from the
   // earlier one (the removals below never need it from the later one: by then one of
-  // the two is out of the mesh, see there). The grid answers from the suspect's box
-  // alone; looking through the triangles at its corners' Delaunay neighbours instead
-  // read some 30 incidence lists per suspect and cost twice as much (PCL's table scene:
-  // 1.1 s against 0.55 s), and could miss a crossing triangle with no corner there.
-  buildGrid();
+  // the two is out of the mesh, see there). Triangles are found near a suspect by
+  // their boxes, through a grid: looking through the triangles at its corners'
+  // Delaunay neighbours instead read some 30 incidence lists per suspect and cost twice
+  // as much (PCL's table scene: 1.1 s against 0.55 s), and could miss a crossing
+  // triangle with no corner there.
   std::vector<std::vector<std::uint32_t> > crossing(suspects.size());
-  tbb::enumerable_thread_specific<std::vector<std::uint32_t> > scratch;
-  const auto findCrossings = [&](const tbb::blocked_range<std::size_t>& range) {
-    std::vector<std::uint32_t>& nearby = scratch.local();
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const std::uint32_t t = suspects[i];
-      const TriangleIndices& o = oriented_[t];
-      const auto [low, high] = boundingBox(o);
-      meshNear(low, high, nearby);
-      for (const std::uint32_t u : nearby)
-        // Most are apart, which their boxes tell without the call (the exact test
-        // starts with the same strict comparison).
-        if ((u > t || !is_suspect[u]) &&
-            !boxesApart(boundingBox(oriented_[u]), {low, high}) &&
-            trianglesIntersect(points_, o, oriented_[u]))
-          crossing[i].push_back(u);
-    }
+  const auto crosses = [&](std::uint32_t t, std::uint32_t u, const Box& t_box) {
+    // Most are apart, which their boxes tell without the call (the exact test starts
+    // with the same strict comparison).
+    return (u > t || !is_suspect[u]) && !boxesApart(boundingBox(oriented_[u]), t_box) &&
+           trianglesIntersect(points_, oriented_[t], oriented_[u]);
   };
-  detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, suspects.size(), 64), findCrossings);
-  });
-
+  if (grid_cell_ > 0) {
+    // The fills built the mesh's grid: each suspect asks it.
+    tbb::enumerable_thread_specific<std::vector<std::uint32_t> > scratch;
+    const auto findCrossings = [&](const tbb::blocked_range<std::size_t>& range) {
+      std::vector<std::uint32_t>& nearby = scratch.local();
+      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+        const std::uint32_t t = suspects[i];
+        const Box box = boundingBox(oriented_[t]);
+        meshNear(box.first, box.second, nearby);
+        for (const std::uint32_t u : nearby)
+          if (crosses(t, u, box))
+            crossing[i].push_back(u);
+      }
+    };
+    detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, suspects.size(), 64),
+                        findCrossings);
+    });
+  }
+  else {
+    findCrossingsBySuspectGrid(suspects, crosses, crossing);
+  }
   // Of each crossing pair the triangle added last goes, suspects in order: removals
   // only shrink the mesh, so the pairs still both in it here are exactly those a
   // sequential pass testing as it goes would meet. (A suspect u crossing a later
