@@ -179,6 +179,24 @@ generatedShapes()
   };
 }
 
+std::vector<std::size_t>
+generatedSizes(bool quick)
+{
+  if (quick)
+    return {10000, 100000};
+  return {10000, 100000, 1000000};
+}
+
+std::string
+generatedName(const std::string& shape, std::size_t n)
+{
+  if (n % 1000000 == 0)
+    return shape + "-" + std::to_string(n / 1000000) + "M";
+  if (n % 1000 == 0)
+    return shape + "-" + std::to_string(n / 1000) + "k";
+  return shape + "-" + std::to_string(n);
+}
+
 bool
 loadFileInput(const std::string& directory, const FileSpec& spec, Input& input, std::string& why)
 {
@@ -240,9 +258,7 @@ generatedInput(const std::string& shape_name, ShapeGenerator generate, std::size
 {
   auto shape = std::make_shared<test::SampledShape>(generate(n, 1));
   Input input;
-  std::ostringstream name;
-  name << shape_name << "-" << (n % 1000 == 0 ? std::to_string(n / 1000) + "k" : std::to_string(n));
-  input.name = name.str();
+  input.name = generatedName(shape_name, n);
   input.source = "blue noise (test/support/shapes.h, seed 1), normal jitter 1e-5 x diagonal";
   input.kind = "generated";
   // The test shapes keep their jitter tiny (it would bias the heights the tests compare

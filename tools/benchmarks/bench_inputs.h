@@ -137,6 +137,15 @@ struct GeneratedShape
 std::vector<GeneratedShape>
 generatedShapes();
 
+/** \brief The sizes the generated shapes are sampled at: 10k and 100k points, and 1M
+ * unless \a quick. */
+std::vector<std::size_t>
+generatedSizes(bool quick);
+
+/** \brief The name of a generated input: "sphere-10k", "sphere-1M". */
+std::string
+generatedName(const std::string& shape, std::size_t n);
+
 /** \brief Computes the derived fields of an input whose points are set: cloud, unique
  * count, spacing, diagonal, reference probes (about \a probes points). */
 void

@@ -40,6 +40,8 @@ using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, Tds>;
 
 /** Peers are left out on inputs of this many points and more with --quick. */
 constexpr std::size_t kQuickPeerLimit = 100000;
+/** Generated shapes this large are not sampled as a torus: largeTorus() is that one. */
+constexpr std::size_t kLargeSize = 1000000;
 
 std::vector<TriangleIndices>
 toTriangles(const std::vector<pcl::Vertices>& polygons)
@@ -341,10 +343,11 @@ runReconstructionSection(Context& context)
         inputs.push_back(input);
   if (context.selected("knot-10k"))
     inputs.push_back(&context.generated("knot", 10000));
-  for (const std::size_t n : {std::size_t(10000), std::size_t(100000)})
+  for (const std::size_t n : generatedSizes(context.options.quick))
     for (const GeneratedShape& g : generatedShapes()) {
-      const std::string name = g.name + "-" + std::to_string(n / 1000) + "k";
-      if (context.selected(name))
+      if (n >= kLargeSize && g.name == "torus")
+        continue; // the jittered torus below is the 1M torus
+      if (context.selected(generatedName(g.name, n)))
         inputs.push_back(&context.generated(g.name, n));
     }
   if (!context.options.quick && context.selected("torus-1M"))
