@@ -6,7 +6,7 @@
 #
 #   tools/benchmarks/run_benchmarks.sh BUILD_DIR [--quick] [other benchmark options]
 #
-# The full run takes about half an hour on a 2-core machine; --quick (no 1M inputs, no
+# The full run takes about an hour on a 2-core machine; --quick (no 1M inputs, no
 # peers at 100k points and more) a few minutes.
 set -euo pipefail
 
