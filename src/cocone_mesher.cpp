@@ -83,6 +83,14 @@ forEachCellOf(const Vector& low, const Vector& high, double cell, F&& f)
         f(packCell(x, y, z));
 }
 
+// The side of a grid's cells: twice the mean of the \a count edges summing to \a edges
+// (a triangle then spans a few cells).
+double
+cellSide(double edges, std::size_t count)
+{
+  return count > 0 && edges > 0 ? 2 * edges / static_cast<double>(count) : 1;
+}
+
 // The number of cells the box [low, high] meets (a double: it can be huge).
 double
 cellCountOf(const Vector& low, const Vector& high, double cell)
@@ -1138,17 +1146,16 @@ Mesher::stitch(std::vector<std::vector<SampleIndex> >& loops)
   detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, loops.size(), 4), prepare);
   });
-  const std::size_t pool_before = pool_.size();
   for (std::size_t h = 0; h < loops.size(); ++h) {
     for (const auto& t : offered[h])
       addToPool({t[0], t[1], t[2]}, first_group + static_cast<std::uint32_t>(h));
     std::vector<std::array<SampleIndex, 3> >().swap(offered[h]);
     group_start_.push_back(static_cast<std::uint32_t>(pool_.size()));
   }
-  // Nothing new in the pool since the lists were built (every loop kept open, as a
+  // Nothing added to the pool since the lists were built (every loop kept open, as a
   // hemisphere's rim is): they are current, and rebuilding them would read the whole
   // pool (0.3 s at a million samples).
-  if (pool_.size() != pool_before || !late_.empty())
+  if (!late_.empty())
     rebuildIncidence();
   // A hole triangle that is a mesh triangle already is of no use.
   std::vector<std::uint32_t> same;
@@ -1443,7 +1450,7 @@ Mesher::buildGrid()
       edges += (points_[oriented_[u][0]] - points_[oriented_[u][1]]).norm();
       ++count;
     }
-  grid_cell_ = count > 0 && edges > 0 ? 2 * edges / static_cast<double>(count) : 1;
+  grid_cell_ = cellSide(edges, count);
   // Without room for its cells the map rehashes as it grows: a quarter of the time of
   // this pass on PCL's table scene (about one cell for every four triangles there).
   grid_.reserve(count / 2);
@@ -1929,7 +1936,7 @@ Mesher::findCrossingsBySuspectGrid(
   double edges = 0;
   for (const std::uint32_t t : suspects)
     edges += (points_[oriented_[t][0]] - points_[oriented_[t][1]]).norm();
-  const double cell = edges > 0 ? 2 * edges / static_cast<double>(suspects.size()) : 1;
+  const double cell = cellSide(edges, suspects.size());
   std::vector<Box> boxes(suspects.size());
   std::unordered_map<CellKey, std::vector<std::uint32_t> > by_cell; // suspect positions
   std::vector<std::uint32_t> wide; // suspects over more than kMostGridCells cells

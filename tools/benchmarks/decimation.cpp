@@ -403,7 +403,7 @@ runDecimationSection(Context& context)
     if (const Input* bunny = context.fileInput("bunny"))
       inputs.push_back(bunny);
   for (const GeneratedShape& g : generatedShapes())
-    if (context.selected(g.name + "-10k"))
+    if (context.selected(generatedName(g.name, 10000)))
       inputs.push_back(&context.generated(g.name, 10000));
 
   report.heading(3, "Reconstruction error at equal point counts");
