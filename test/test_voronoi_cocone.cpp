@@ -759,3 +759,64 @@ TEST(VoronoiCocone, OneThreadAndAllThreadsGiveIdenticalResults)
 }
 
 } // namespace
+
+// spatialOrder: a permutation that follows space (consecutive points are close), is
+// stable (identical points keep their order), and sends non-finite points last.
+TEST(SpatialOrder, APermutationAlongSpaceStableForIdenticalPoints)
+{
+  EXPECT_TRUE(pcl::cocone::spatialOrder(Points()).empty());
+
+  Points points = sampleSphere(20000, 4).points;
+  const std::size_t distinct = points.size();
+  // Copies of point 7 at later positions, and points that cannot be placed.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  points.push_back(points[7]);
+  points.emplace_back(nan, 0, 0);
+  points.push_back(points[7]);
+  points.emplace_back(0, inf, 0);
+  const std::vector<SampleIndex> order = pcl::cocone::spatialOrder(points, 1);
+  ASSERT_EQ(order.size(), points.size());
+  EXPECT_EQ(pcl::cocone::spatialOrder(points, 0), order); // threads change nothing
+
+  std::vector<SampleIndex> sorted = order;
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t k = 0; k < sorted.size(); ++k)
+    ASSERT_EQ(sorted[k], k);
+
+  // The non-finite points last, in their input order.
+  EXPECT_EQ(order[points.size() - 2], distinct + 1);
+  EXPECT_EQ(order[points.size() - 1], distinct + 3);
+  // The copies of point 7 right after it, in input order.
+  const auto first = std::find(order.begin(), order.end(), SampleIndex(7));
+  ASSERT_LE(first + 3, order.end());
+  EXPECT_EQ(first[1], distinct);
+  EXPECT_EQ(first[2], distinct + 2);
+
+  // Along the curve, consecutive samples are neighbours: on average about a spacing
+  // apart, where the input order (blue noise, random) jumps across the sphere.
+  const auto meanStep = [&](const std::vector<SampleIndex>& sequence) {
+    double sum = 0;
+    for (std::size_t k = 1; k < distinct; ++k)
+      sum += (points[sequence[k]] - points[sequence[k - 1]]).norm();
+    return sum / static_cast<double>(distinct - 1);
+  };
+  std::vector<SampleIndex> input(distinct);
+  std::iota(input.begin(), input.end(), SampleIndex(0));
+  const double spacing = std::sqrt(4 * M_PI / static_cast<double>(distinct));
+  const double along_curve = meanStep(order), as_given = meanStep(input);
+  std::cout << "[ measured ] mean step between consecutive samples: " << along_curve
+            << " (curve) and " << as_given << " (input order); spacing " << spacing
+            << std::endl;
+  EXPECT_LT(along_curve, 3 * spacing);
+  EXPECT_GT(as_given, 20 * spacing);
+}
+
+// A single point, and points all at one place: nothing to sort, the order is the input.
+TEST(SpatialOrder, NoExtentKeepsTheInputOrder)
+{
+  const Points same(5, Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(pcl::cocone::spatialOrder(same), (std::vector<SampleIndex>{0, 1, 2, 3, 4}));
+  EXPECT_EQ(pcl::cocone::spatialOrder(Points(1, Eigen::Vector3d::Zero())),
+            std::vector<SampleIndex>{0});
+}

@@ -103,7 +103,7 @@ BoundarySampleEstimation<PointInT, PointOutT>::computeFeature(PointCloudOut& out
   std::iota(all.begin(), all.end(), 0);
   std::vector<Eigen::Vector3d> samples;
   pcl::Indices cloud_index;
-  cocone::gatherFiniteSamples(*input_, all, samples, cloud_index);
+  cocone::gatherFiniteSamples(*input_, all, samples, cloud_index, nullptr, threads_);
   std::vector<cocone::SampleIndex> sample_of(input_->size(), cocone::kNoSample);
   for (std::size_t s = 0; s < cloud_index.size(); ++s)
     sample_of[cloud_index[s]] = static_cast<cocone::SampleIndex>(s);

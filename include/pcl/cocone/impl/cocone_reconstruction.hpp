@@ -66,7 +66,8 @@ CoconeReconstruction<PointInT>::performReconstruction(std::vector<pcl::Vertices>
 
   std::vector<Eigen::Vector3d> samples;
   pcl::Indices cloud_index;
-  cocone::gatherFiniteSamples(*input_, *indices_, samples, cloud_index, &unused_indices_);
+  cocone::gatherFiniteSamples(*input_, *indices_, samples, cloud_index,
+                              &unused_indices_, threads_);
 
   cocone::VoronoiCocone voronoi;
   voronoi.setCoconeAngle(cocone_angle_);

@@ -51,7 +51,8 @@ VoronoiDecimation<PointT>::decimate(double rho, bool relax)
   error_message_.clear();
   std::vector<Eigen::Vector3d> samples;
   pcl::Indices cloud_index;
-  cocone::gatherFiniteSamples(*input_, *indices_, samples, cloud_index);
+  cocone::gatherFiniteSamples(*input_, *indices_, samples, cloud_index, nullptr,
+                              threads_);
 
   cocone::VoronoiCocone voronoi;
   voronoi.setCoconeAngle(cocone_angle_);
