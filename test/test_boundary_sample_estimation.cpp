@@ -1019,6 +1019,35 @@ TEST(BoundarySampleEstimation, IndicesSelectRowsOfTheFullRun)
   EXPECT_EQ(subset.count, flagged);
 }
 
+// The flags and per-point values depend on the points, not on their order in the
+// cloud (the samples reach the core in spatial order).
+TEST(BoundarySampleEstimation, ShuffledCloudGivesTheSameRows)
+{
+  const SampledShape& shape = cachedShape("hemisphere", shapes::sampleHemisphere);
+  const auto cloud = toCloud(shape.points);
+  std::vector<std::size_t> shuffle(cloud->size());
+  for (std::size_t i = 0; i < shuffle.size(); ++i)
+    shuffle[i] = i;
+  std::shuffle(shuffle.begin(), shuffle.end(), std::mt19937(3));
+  auto shuffled = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ> >();
+  for (const std::size_t i : shuffle)
+    shuffled->push_back((*cloud)[i]);
+  const BoundaryRun as_given = runBoundary<pcl::PointXYZ>(cloud);
+  const BoundaryRun reordered = runBoundary<pcl::PointXYZ>(shuffled);
+  ASSERT_EQ(reordered.rows, shuffle.size());
+  std::size_t differing = 0;
+  for (std::size_t row = 0; row < shuffle.size(); ++row) {
+    const std::size_t i = shuffle[row];
+    differing += reordered.flags[row] != as_given.flags[i] ||
+                 reordered.heights[row] != as_given.heights[i] ||
+                 reordered.ratios[row] != as_given.ratios[i] ||
+                 reordered.poles[row] != as_given.poles[i];
+  }
+  EXPECT_GT(as_given.count, 0u);
+  EXPECT_EQ(reordered.count, as_given.count);
+  EXPECT_EQ(differing, 0u);
+}
+
 TEST(BoundarySampleEstimation, OutOfRangeSettersKeepTheValue)
 {
   pcl::BoundarySampleEstimation<pcl::PointXYZ> estimator;

@@ -35,7 +35,9 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <queue>
+#include <random>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -161,6 +163,26 @@ TEST_F(DecimationContract, SubsetDeterministicAndNeverMoved)
   std::cout << "[ measured ] torus 3000 at rho 0.3: " << first.size() << " kept ("
             << 100.0 * (1.0 - static_cast<double>(first.size()) / 3000.0)
             << "% removed)" << std::endl;
+}
+
+// The kept points depend on the points, not on their order in the cloud (the samples
+// reach the core in spatial order), and the output still follows the cloud's order.
+TEST_F(DecimationContract, ShuffledCloudKeepsTheSamePoints)
+{
+  std::vector<std::size_t> shuffle(cloud_->size());
+  std::iota(shuffle.begin(), shuffle.end(), std::size_t(0));
+  std::shuffle(shuffle.begin(), shuffle.end(), std::mt19937(5));
+  Cloud::Ptr shuffled(new Cloud);
+  for (const std::size_t i : shuffle)
+    shuffled->push_back((*cloud_)[i]);
+  const pcl::Indices as_given = decimate(cloud_);
+  const pcl::Indices reordered = decimate(shuffled);
+  EXPECT_TRUE(std::is_sorted(reordered.begin(), reordered.end()));
+  pcl::Indices mapped;
+  for (const pcl::index_t k : reordered)
+    mapped.push_back(static_cast<pcl::index_t>(shuffle[static_cast<std::size_t>(k)]));
+  EXPECT_EQ(sorted(mapped), as_given);
+  EXPECT_LT(as_given.size(), cloud_->size());
 }
 
 // Kept and removed indices partition the selection; setNegative returns exactly the
