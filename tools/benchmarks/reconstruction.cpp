@@ -385,17 +385,14 @@ runReconstructionSection(Context& context)
 
   // --- Delaunay floor and core ---------------------------------------------------
   report.heading(3, "Delaunay floor and our core");
-  report.paragraph("DT: bare CGAL Delaunay_triangulation_3 (EPICK, points with info, "
-                   "bulk insertion), "
-                   "single-threaded: what plain CGAL gives (our core runs the same "
-                   "spatial sort on every "
-                   "core, then the same insertion). Core: spatialOrder, then "
-                   "VoronoiCocone::compute, whose timings() "
-                   "split the triangulation (duplicates included) from the per-sample "
-                   "Voronoi geometry "
-                   "(poles, heights, cocone radii, marked triangles; parallel). "
-                   "geometry/DT uses the "
-                   "core's own split of the same run. Peak: resident memory growth.");
+  report.paragraph(
+      "DT: bare CGAL Delaunay_triangulation_3 (EPICK, points with info, bulk "
+      "insertion), single-threaded: what plain CGAL gives (our core runs the same "
+      "spatial sort on every core, then the same insertion). Core: spatialOrder, then "
+      "VoronoiCocone::compute, whose timings() split the triangulation (duplicates "
+      "included) from the per-sample Voronoi geometry (poles, heights, cocone radii, "
+      "marked triangles; parallel). geometry/DT uses the core's own split of the same "
+      "run. Peak: resident memory growth.");
   Table floor({"input", "points", "DT s", "DT peak MB", "core s", "core DT part s",
                "geometry s", "geometry/DT", "core/DT", "core peak MB", "ours s", "ours/DT",
                "ours peak MB"});
