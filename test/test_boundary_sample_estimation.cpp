@@ -1025,13 +1025,8 @@ TEST(BoundarySampleEstimation, ShuffledCloudGivesTheSameRows)
 {
   const SampledShape& shape = cachedShape("hemisphere", shapes::sampleHemisphere);
   const auto cloud = toCloud(shape.points);
-  std::vector<std::size_t> shuffle(cloud->size());
-  for (std::size_t i = 0; i < shuffle.size(); ++i)
-    shuffle[i] = i;
-  std::shuffle(shuffle.begin(), shuffle.end(), std::mt19937(3));
-  auto shuffled = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ> >();
-  for (const std::size_t i : shuffle)
-    shuffled->push_back((*cloud)[i]);
+  std::vector<std::size_t> shuffle;
+  const auto shuffled = pcl::cocone::test::shuffledCloud(*cloud, 3, shuffle);
   const BoundaryRun as_given = runBoundary<pcl::PointXYZ>(cloud);
   const BoundaryRun reordered = runBoundary<pcl::PointXYZ>(shuffled);
   ASSERT_EQ(reordered.rows, shuffle.size());

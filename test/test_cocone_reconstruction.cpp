@@ -17,7 +17,6 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
-#include <numeric>
 #include <random>
 
 namespace {
@@ -395,15 +394,11 @@ TEST(CoconeReconstruction, NoisySpheresWithoutStitchingLeaveNoSelfIntersection)
 // have many ties to break, and the same cloud shuffled give the same triangles.
 TEST(CoconeReconstruction, ShuffledCloudGivesTheSameMesh)
 {
-  const Points points = noisySpheres().front().first;
-  std::vector<std::size_t> shuffle(points.size());
-  std::iota(shuffle.begin(), shuffle.end(), std::size_t(0));
-  std::shuffle(shuffle.begin(), shuffle.end(), std::mt19937(17));
-  Points shuffled(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i)
-    shuffled[i] = points[shuffle[i]];
-  const Result as_given = reconstruct(toCloud(points), "noisy sphere");
-  const Result reordered = reconstruct(toCloud(shuffled), "noisy sphere, shuffled");
+  const auto cloud = toCloud(noisySpheres().front().first);
+  std::vector<std::size_t> shuffle;
+  const auto shuffled = shuffledCloud(*cloud, 17, shuffle);
+  const Result as_given = reconstruct(cloud, "noisy sphere");
+  const Result reordered = reconstruct(shuffled, "noisy sphere, shuffled");
 
   // Each triangle as its sorted original point indices.
   const auto canonical = [](std::vector<TriangleIndices> triangles,

@@ -35,9 +35,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
-#include <numeric>
 #include <queue>
-#include <random>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -169,12 +167,8 @@ TEST_F(DecimationContract, SubsetDeterministicAndNeverMoved)
 // reach the core in spatial order), and the output still follows the cloud's order.
 TEST_F(DecimationContract, ShuffledCloudKeepsTheSamePoints)
 {
-  std::vector<std::size_t> shuffle(cloud_->size());
-  std::iota(shuffle.begin(), shuffle.end(), std::size_t(0));
-  std::shuffle(shuffle.begin(), shuffle.end(), std::mt19937(5));
-  Cloud::Ptr shuffled(new Cloud);
-  for (const std::size_t i : shuffle)
-    shuffled->push_back((*cloud_)[i]);
+  std::vector<std::size_t> shuffle;
+  const Cloud::Ptr shuffled = shuffledCloud(*cloud_, 5, shuffle);
   const pcl::Indices as_given = decimate(cloud_);
   const pcl::Indices reordered = decimate(shuffled);
   EXPECT_TRUE(std::is_sorted(reordered.begin(), reordered.end()));

@@ -9,8 +9,11 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <numeric>
+#include <random>
 #include <vector>
 
 namespace pcl {
@@ -46,6 +49,22 @@ toPoints(const pcl::PointCloud<PointT>& cloud)
   for (const PointT& p : cloud)
     points.emplace_back(p.x, p.y, p.z);
   return points;
+}
+
+/** \a cloud's points in a random order, the same for a given \a seed: point k of the
+ * result is point order[k] of \a cloud. */
+template <typename PointT>
+typename pcl::PointCloud<PointT>::Ptr
+shuffledCloud(const pcl::PointCloud<PointT>& cloud, std::uint32_t seed,
+              std::vector<std::size_t>& order)
+{
+  order.resize(cloud.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::shuffle(order.begin(), order.end(), std::mt19937(seed));
+  auto shuffled = pcl::make_shared<pcl::PointCloud<PointT> >();
+  for (const std::size_t i : order)
+    shuffled->push_back(cloud[i]);
+  return shuffled;
 }
 
 } // namespace test
