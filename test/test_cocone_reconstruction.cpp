@@ -330,14 +330,14 @@ TEST(CoconeReconstruction, OutliersStayOut)
 // a manifold without self-intersections (reconstruct() checks both) that stays on the
 // sphere: no fill cuts through its inside.
 /** Three 8000-point unit spheres moved along their normals by noise of half a spacing.
- * About one seed in three lays a triangle through another (which one depends on the
- * tie-breaks of the walk and the fills); seeds 4 and 6 do, with the samples in
- * spatial order, so the crossing check has work. */
+ * Few seeds lay a triangle through another since the walk takes no folds (1 in 24 with
+ * stitching, 2 in 24 without); seed 3 does with stitching, seeds 2 and 9 without, so
+ * the crossing check has work in both tests. */
 std::vector<std::pair<Points, double> >
 noisySpheres()
 {
   std::vector<std::pair<Points, double> > spheres;
-  for (const std::uint32_t seed : {1u, 4u, 6u}) {
+  for (const std::uint32_t seed : {2u, 3u, 9u}) {
     const SampledShape sphere = sampleSphere(8000, seed);
     std::mt19937 random(seed);
     std::normal_distribution<double> noise(0.0, 0.5 * sphere.spacing());
@@ -614,27 +614,24 @@ TEST(CoconeReconstructionData, RockerArmIsClosedGenus1)
   reportDistanceToReference(data, result.triangles, "rocker-arm");
 }
 
-// A partial view of a milk carton (a noisy single-view capture: BOUNDARY flags 28% of
-// its samples): manifold, without self-intersection, and open along its rim. What
-// else remains open (holes in noisy patches too large to stitch) and the small
-// separate pieces (noise) are reported.
-TEST(CoconeReconstructionData, MilkKeepsItsOpenRim)
+// A partial view of a milk carton (a noisy single-view capture, quantized in depth:
+// BOUNDARY flags 28% of its samples) is a disc: one piece, open along its rim only,
+// manifold and without self-intersection. The walk used to take folds here and came
+// back upside down: cracks across the carton, 4 loops and Euler characteristic -20.
+TEST(CoconeReconstructionData, MilkIsADisc)
 {
   PCL_COCONE_REQUIRE_DATA_FILE(path, "pcl_milk_13704.pcd");
   const DataSet data = loadDataSet(path);
   const Result result = reconstruct(data.cloud, "milk");
   EXPECT_TRUE(result.topology.isManifold());
-  ASSERT_FALSE(result.topology.boundary_loops.empty());
-  std::size_t longest = 0;
-  for (const auto& loop : result.topology.boundary_loops)
-    longest = std::max(longest, loop.size());
   std::cout << "[ milk ] " << result.topology.vertices << " of " << data.cloud->size()
             << " samples used, " << result.topology.components << " components, "
-            << result.topology.boundary_loops.size() << " open loops, the rim has "
-            << longest << " of " << result.topology.boundary_edges
-            << " boundary edges, genus " << result.topology.genus() << std::endl;
-  // The rim of the view dominates what stays open.
-  EXPECT_GE(longest, result.topology.boundary_edges * 8 / 10);
+            << result.topology.boundary_loops.size() << " open loops ("
+            << result.topology.boundary_edges << " boundary edges), genus "
+            << result.topology.genus() << std::endl;
+  EXPECT_EQ(result.topology.components, 1u);
+  EXPECT_EQ(result.topology.boundary_loops.size(), 1u);
+  EXPECT_EQ(result.topology.eulerCharacteristic(), 1);
   EXPECT_GE(result.topology.vertices, data.cloud->size() * 95 / 100);
 }
 
