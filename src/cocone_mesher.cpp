@@ -178,8 +178,11 @@ private:
     if (log_changes_)
       changed_.emplace_back(t, state_[t] == kInMesh);
     state_[t] = kInMesh;
-    for (const SampleIndex v : oriented_[t])
+    const Vector nt = orientedNormal(oriented_[t]);
+    for (const SampleIndex v : oriented_[t]) {
       ++mesh_degree_[v];
+      fan_normal_[v] += nt;
+    }
     if (grid_cell_ > 0)
       gridInsert(t);
   }
@@ -190,7 +193,9 @@ private:
       changed_.emplace_back(t, state_[t] == kInMesh);
     state_[t] = kRejected;
     const TriangleIndices& o = oriented_[t];
+    const Vector nt = orientedNormal(o);
     for (int k = 0; k < 3; ++k) {
+      fan_normal_[o[k]] -= nt;
       --mesh_degree_[o[k]];
       maybe_open_.emplace_back(o[k], o[(k + 1) % 3]);
     }
@@ -266,6 +271,13 @@ private:
   Vector orientedNormal(const TriangleIndices& o) const
   {
     return (points_[o[1]] - points_[o[0]]).cross(points_[o[2]] - points_[o[0]]);
+  }
+  /** Whether the triangle (b, a, x), which would continue the mesh across its edge
+   * a -> b, faces away from the mesh around a or around b (fan_normal_). */
+  bool turnsOver(SampleIndex a, SampleIndex b, SampleIndex x) const
+  {
+    const Vector normal = orientedNormal({b, a, x});
+    return normal.dot(fan_normal_[a]) < 0 || normal.dot(fan_normal_[b]) < 0;
   }
 
   // --- stages ---------------------------------------------------------------------
@@ -377,6 +389,9 @@ private:
   double grid_cell_ = 0;
   std::unordered_map<SampleIndex, std::vector<std::uint32_t> > late_; // added since
   std::vector<std::uint32_t> mesh_degree_; // mesh triangles at each sample
+  // Sum of the oriented normals (twice the areas) of the mesh triangles at each sample:
+  // the side the mesh faces there (see step()).
+  std::vector<Vector> fan_normal_;
   std::vector<double> spacing_;            // local sample spacing
   std::vector<SampleIndex> seed_order_;    // samples by decreasing x
   std::vector<SampleIndex> pinched_;       // apexes of forced steps
@@ -748,13 +763,16 @@ Mesher::prune(std::uint32_t group)
 // traverses b -> a. Refuse it (the edge stays open, for stitching) if it would put a
 // third triangle on an edge, traverse an edge in the direction its mesh triangle does,
 // or give its apex a second fan.
-// A candidate that folds back onto t (a dihedral angle below pi/2, what pruning calls a
-// fold) is never taken. Pruning keeps such a fold when a flat candidate shares its
-// edge, and by rotation the fold comes first: the walk then went on upside down, and
-// where its fronts met again their orientations disagreed. On PCL's milk scan (a noisy,
-// quantized depth image) a third of the surface came out flipped, bounded by cracks 20
-// to 60 spacings long that no fill could close: 4 loops and Euler characteristic -20,
-// against one loop around a disc without folds.
+// Never take a candidate that would turn the surface over: one that folds back onto t
+// (within a right angle of it, a dihedral angle below pi/2: what pruning calls a fold),
+// or one that faces away from the mesh around a or b (its normal against the sum of
+// the normals there; at the apex too would open sharp creases, as on the fandisk).
+// Pruning keeps a fold when a flat candidate shares its edge, and by rotation the fold
+// comes first; on a noisy surface a few steep steps can turn the front over as well.
+// The walk then went on upside down, and where its fronts met again their orientations
+// disagreed: on PCL's milk scan (a noisy, quantized depth image) a third of the surface
+// came out flipped, bounded by cracks 20 to 60 spacings long that no fill could close
+// (4 loops, Euler characteristic -20; a disc now).
 Mesher::Step
 Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
 {
@@ -783,7 +801,7 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
     return {Step::done, 0}; // closed already
 
   // Candidates around the edge, by rotation angle from t towards its normal, leaving
-  // out those that fold back onto t (see the comment above).
+  // out those that would turn the surface over (see the comment above).
   const Vector pa = points_[a];
   const Vector axis = (points_[b] - pa).normalized();
   Vector reference = points_[c] - pa;
@@ -794,8 +812,7 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
   for (std::size_t k = 0; k < around_.size(); ++k) {
     Vector u = points_[around_apex_[k]] - pa;
     u -= u.dot(axis) * axis;
-    // Within a right angle of t's own side of the edge: a dihedral angle below pi/2.
-    if (u.dot(reference) > 0)
+    if (u.dot(reference) > 0 || turnsOver(a, b, around_apex_[k]))
       continue;
     double angle = std::atan2(u.dot(up), u.dot(reference));
     if (angle <= 0)
@@ -2171,6 +2188,7 @@ Mesher::run(std::vector<TriangleIndices>& output)
     report_.boundary_samples.assign(n_, 0);
   }
   mesh_degree_.assign(n_, 0);
+  fan_normal_.assign(n_, Vector::Zero());
   lap(timings.boundary, "boundary samples");
 
   measureSpacing();
