@@ -30,8 +30,9 @@ namespace pcl {
  *    triangles at sharp folds or dangling at bare edges are pruned (never those of a
  *    boundary sample, never those a flat sheet holds, so small gaps cannot cascade);
  * 4. a walk over the outer side of the candidates extracts the manifold, refusing a
- *    third triangle on an edge and a second fan at a vertex; closed components face
- *    outward;
+ *    third triangle on an edge, a second fan at a vertex and any step that would turn
+ *    the surface over (noisy scans otherwise come out partly upside down, with cracks
+ *    where the two orientations meet); closed components face outward;
  * 5. the holes left are stitched with Delaunay triangles (or, for a few vertices, the
  *    least-area triangulation of the hole), unless a hole is a true boundary: larger
  *    than the true-boundary ratio in sample spacings;
