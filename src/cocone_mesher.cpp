@@ -814,9 +814,11 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
     u -= u.dot(axis) * axis;
     if (u.dot(reference) > 0 || turnsOver(a, b, around_apex_[k]))
       continue;
-    double angle = std::atan2(u.dot(up), u.dot(reference));
-    if (angle <= 0)
-      angle += 2 * M_PI;
+    // What is left lies between pi/2 and 3pi/2 from t, where this grows with the angle
+    // as atan2 does (and costs less); an apex on the edge's line comes last.
+    const double along = u.dot(reference), across = u.dot(up);
+    const double spread = std::abs(along) + std::abs(across);
+    const double angle = spread > 0 ? -across / spread : 2.0;
     if (angle < best_angle) {
       best_angle = angle;
       best_k = k;
