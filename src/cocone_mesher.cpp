@@ -772,7 +772,7 @@ Mesher::prune(std::uint32_t group)
 // The walk then went on upside down, and where its fronts met again their orientations
 // disagreed: on PCL's milk scan (a noisy, quantized depth image) a third of the surface
 // came out flipped, bounded by cracks 20 to 60 spacings long that no fill could close
-// (4 loops, Euler characteristic -20; a disc now).
+// (4 loops, Euler characteristic -20; now genus 0, open along its rim and one crack).
 Mesher::Step
 Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
 {

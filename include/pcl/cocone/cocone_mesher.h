@@ -116,8 +116,9 @@ struct ReconstructionReport
  * triangles that a flat sheet holds on an edge, so that small gaps cannot cascade);
  * manifold extraction by walking the outer side of the candidates, refusing any third
  * triangle on an edge, any second fan at a vertex and any step that would turn the
- * surface over (a fold, or a triangle facing away from the mesh at the edge's ends); stitching of the holes that are
- * not true boundaries with Delaunay triangles on the hole, by the same prune and walk;
+ * surface over (a fold, or a triangle facing away from the mesh at the edge's ends);
+ * stitching of the holes that are not true boundaries with Delaunay triangles on the
+ * hole, by the same prune and walk;
  * putting back samples left out that lie on the surface; removal of triangles crossing
  * another one (their holes stitched again); orientation outward on closed components.
  * \param[in] voronoi a VoronoiCocone on which compute() succeeded and decimate() has
