@@ -812,11 +812,11 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
   for (std::size_t k = 0; k < around_.size(); ++k) {
     Vector u = points_[around_apex_[k]] - pa;
     u -= u.dot(axis) * axis;
-    if (u.dot(reference) > 0 || turnsOver(a, b, around_apex_[k]))
+    const double along = u.dot(reference), across = u.dot(up);
+    if (along > 0 || turnsOver(a, b, around_apex_[k]))
       continue;
     // What is left lies between pi/2 and 3pi/2 from t, where this grows with the angle
     // as atan2 does (and costs less); an apex on the edge's line comes last.
-    const double along = u.dot(reference), across = u.dot(up);
     const double spread = std::abs(along) + std::abs(across);
     const double angle = spread > 0 ? -across / spread : 2.0;
     if (angle < best_angle) {
