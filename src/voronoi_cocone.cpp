@@ -235,86 +235,11 @@ clipVoronoiEdge(const Eigen::Vector3d& start,
 
 // ---------------------------------------------------------------------------------
 Eigen::Vector3d
-hullFacetNormal(CellHandle c, int i)
-{
-  const Eigen::Vector3d a = toEigen(c->vertex((i + 1) & 3)->point());
-  const Eigen::Vector3d b = toEigen(c->vertex((i + 2) & 3)->point());
-  const Eigen::Vector3d d = toEigen(c->vertex((i + 3) & 3)->point());
-  Eigen::Vector3d normal = (b - a).cross(d - a);
-  // Outward: away from the vertex of c opposite the facet.
-  if (normal.dot(toEigen(c->vertex(i)->point()) - a) > 0)
-    normal = -normal;
-  const double length = normal.norm();
-  return length > 0 ? Eigen::Vector3d(normal / length) : normal;
-}
-
-Eigen::Vector3d
 circumcenter(CellHandle c)
 {
   const Point center = CGAL::circumcenter(c->vertex(0)->point(), c->vertex(1)->point(),
                                           c->vertex(2)->point(), c->vertex(3)->point());
   return {center.x(), center.y(), center.z()};
-}
-
-void
-computePoles(const Delaunay& dt,
-             VertexHandle v,
-             const std::vector<CellHandle>& star,
-             const std::vector<Eigen::Vector3d>& centers,
-             CellGeometry& geometry)
-{
-  const Eigen::Vector3d p = toEigen(v->point());
-  Eigen::Vector3d hull_normal_sum = Eigen::Vector3d::Zero();
-  double farthest2 = -1;
-  geometry.unbounded = false;
-  for (const CellHandle& c : star) {
-    if (dt.is_infinite(c)) {
-      // The finite facet of an infinite cell is a convex-hull triangle at p.
-      geometry.unbounded = true;
-      const int inf = c->index(dt.infinite_vertex());
-      const CellHandle inside = c->neighbor(inf);
-      hull_normal_sum += hullFacetNormal(inside, inside->index(c));
-      continue;
-    }
-    const Eigen::Vector3d& center = centers[c->cellIndex()];
-    const double d2 = (center - p).squaredNorm();
-    if (d2 > farthest2) {
-      farthest2 = d2;
-      geometry.positive_pole = center;
-    }
-  }
-  if (geometry.unbounded) {
-    const double length = hull_normal_sum.norm();
-    if (length > 1e-12)
-      geometry.pole_vector = hull_normal_sum / length;
-    else if (farthest2 > 0) // opposite hull normals cancel: fall back to the far vertex
-      geometry.pole_vector = (geometry.positive_pole - p).normalized();
-    else
-      geometry.pole_vector = Eigen::Vector3d::UnitZ();
-    geometry.positive_pole.setConstant(std::numeric_limits<double>::infinity());
-  }
-  else {
-    geometry.pole_vector = (geometry.positive_pole - p).normalized();
-  }
-
-  double negative2 = -1;
-  for (const CellHandle& c : star) {
-    if (dt.is_infinite(c))
-      continue;
-    const Eigen::Vector3d to_center = centers[c->cellIndex()] - p;
-    if (to_center.dot(geometry.pole_vector) >= 0)
-      continue;
-    const double d2 = to_center.squaredNorm();
-    if (d2 > negative2) {
-      negative2 = d2;
-      geometry.negative_pole = to_center + p;
-    }
-  }
-  // The geometry is reused from sample to sample: leave no stale pole behind.
-  if (!(negative2 > 0))
-    geometry.negative_pole.setConstant(std::numeric_limits<double>::quiet_NaN());
-  geometry.height = negative2 > 0 ? std::sqrt(negative2)
-                                  : std::numeric_limits<double>::quiet_NaN();
 }
 
 } // namespace detail
@@ -562,6 +487,162 @@ VoronoiCocone::delaunayTrianglesAmong(
 // ---------------------------------------------------------------------------------
 namespace {
 
+/** The triangulation as flat arrays by cell number, finite cells first and the
+ * infinite ones after them. The per-sample pass reads these instead of CGAL's cells,
+ * which lie scattered in memory: following a handle there was what it waited on. */
+struct CellTable
+{
+  std::vector<std::array<SampleIndex, 4> > samples; // kNoSample: the infinite vertex
+  std::vector<std::array<std::uint32_t, 4> > neighbours; // the cell across facet i
+  std::size_t finite = 0;
+
+  bool isFinite(std::uint32_t k) const { return k < finite; }
+
+  /** The position of sample \a s (or kNoSample) in cell \a k; the cell has it. */
+  int indexOf(std::uint32_t k, SampleIndex s) const
+  {
+    const std::array<SampleIndex, 4>& v = samples[k];
+    return v[0] == s ? 0 : v[1] == s ? 1 : v[2] == s ? 2 : 3;
+  }
+
+  /** The facet of cell \a k shared with its neighbour \a n. */
+  int facetTowards(std::uint32_t k, std::uint32_t n) const
+  {
+    const std::array<std::uint32_t, 4>& c = neighbours[k];
+    return c[0] == n ? 0 : c[1] == n ? 1 : c[2] == n ? 2 : 3;
+  }
+};
+
+/** What one pass over a vertex's Voronoi cell produces. */
+struct CellGeometry
+{
+  Eigen::Vector3d pole_vector = Eigen::Vector3d::Zero();
+  Eigen::Vector3d positive_pole = Eigen::Vector3d::Zero(); // centered frame
+  Eigen::Vector3d negative_pole = Eigen::Vector3d::Zero(); // centered frame
+  bool unbounded = false;
+  double height = 0; // NaN without a negative pole
+};
+
+/** Unit outward normal of the convex-hull facet i of the finite cell k, whose
+ * neighbour across it is infinite. */
+Eigen::Vector3d
+hullFacetNormal(const CellTable& cells, const std::vector<Eigen::Vector3d>& points,
+                std::uint32_t k, int i)
+{
+  const std::array<SampleIndex, 4>& v = cells.samples[k];
+  const Eigen::Vector3d& a = points[v[(i + 1) & 3]];
+  const Eigen::Vector3d& b = points[v[(i + 2) & 3]];
+  const Eigen::Vector3d& d = points[v[(i + 3) & 3]];
+  Eigen::Vector3d normal = (b - a).cross(d - a);
+  // Outward: away from the vertex of k opposite the facet.
+  if (normal.dot(points[v[i]] - a) > 0)
+    normal = -normal;
+  const double length = normal.norm();
+  return length > 0 ? Eigen::Vector3d(normal / length) : normal;
+}
+
+/** The poles, pole vector and height of the cell of sample \a s, from the cells of its
+ * star. */
+void
+computePoles(const CellTable& cells, const std::vector<Eigen::Vector3d>& centers,
+             const std::vector<Eigen::Vector3d>& points, SampleIndex s,
+             const std::uint32_t* star_begin, const std::uint32_t* star_end,
+             CellGeometry& geometry)
+{
+  const Eigen::Vector3d& p = points[s];
+  Eigen::Vector3d hull_normal_sum = Eigen::Vector3d::Zero();
+  double farthest2 = -1;
+  geometry.unbounded = false;
+  for (const std::uint32_t* c = star_begin; c != star_end; ++c) {
+    if (!cells.isFinite(*c)) {
+      // The finite facet of an infinite cell is a convex-hull triangle at p.
+      geometry.unbounded = true;
+      const std::uint32_t inside = cells.neighbours[*c][cells.indexOf(*c, kNoSample)];
+      hull_normal_sum +=
+          hullFacetNormal(cells, points, inside, cells.facetTowards(inside, *c));
+      continue;
+    }
+    const double d2 = (centers[*c] - p).squaredNorm();
+    if (d2 > farthest2) {
+      farthest2 = d2;
+      geometry.positive_pole = centers[*c];
+    }
+  }
+  if (geometry.unbounded) {
+    const double length = hull_normal_sum.norm();
+    if (length > 1e-12)
+      geometry.pole_vector = hull_normal_sum / length;
+    else if (farthest2 > 0) // opposite hull normals cancel: fall back to the far vertex
+      geometry.pole_vector = (geometry.positive_pole - p).normalized();
+    else
+      geometry.pole_vector = Eigen::Vector3d::UnitZ();
+    geometry.positive_pole.setConstant(std::numeric_limits<double>::infinity());
+  }
+  else {
+    geometry.pole_vector = (geometry.positive_pole - p).normalized();
+  }
+
+  double negative2 = -1;
+  for (const std::uint32_t* c = star_begin; c != star_end; ++c) {
+    if (!cells.isFinite(*c))
+      continue;
+    const Eigen::Vector3d to_center = centers[*c] - p;
+    if (to_center.dot(geometry.pole_vector) >= 0)
+      continue;
+    const double d2 = to_center.squaredNorm();
+    if (d2 > negative2) {
+      negative2 = d2;
+      geometry.negative_pole = to_center + p;
+    }
+  }
+  // The geometry is reused from sample to sample: leave no stale pole behind.
+  if (!(negative2 > 0))
+    geometry.negative_pole.setConstant(std::numeric_limits<double>::quiet_NaN());
+  geometry.height =
+      negative2 > 0 ? std::sqrt(negative2) : std::numeric_limits<double>::quiet_NaN();
+}
+
+/** The cocone radius of sample \a s for the unit axis \a axis. Every Voronoi edge of
+ * its cell is the dual of a Delaunay facet (c, i) of the star; each is visited once,
+ * from its finite cell or from the cell of lower number (not address: the edge is
+ * clipped from that side, and the rounding must not change from run to run). An edge
+ * that meets the cocone marks the facet: bit i of marks[c][position of s in c]. */
+double
+computeCoconeRadius(const CellTable& cells, const std::vector<Eigen::Vector3d>& centers,
+                    const std::vector<Eigen::Vector3d>& points, SampleIndex s,
+                    const std::uint32_t* star_begin, const std::uint32_t* star_end,
+                    const Eigen::Vector3d& axis, double sin_theta,
+                    std::vector<std::array<std::uint8_t, 4> >& marks)
+{
+  const Eigen::Vector3d& p = points[s];
+  double radius2 = 0;
+  for (const std::uint32_t* c = star_begin; c != star_end; ++c) {
+    if (!cells.isFinite(*c))
+      continue; // its finite facet at s is visited from the finite side
+    const int self = cells.indexOf(*c, s);
+    for (int i = 0; i < 4; ++i) {
+      if (i == self)
+        continue; // the facet opposite s does not contain s
+      const std::uint32_t n = cells.neighbours[*c][i];
+      const bool ray = !cells.isFinite(n);
+      if (!ray && n < *c)
+        continue; // visited from n
+      const Eigen::Vector3d start = centers[*c] - p;
+      const Eigen::Vector3d direction = ray ? hullFacetNormal(cells, points, *c, i)
+                                            : Eigen::Vector3d(centers[n] - p - start);
+      const EdgeInCocone clip = clipVoronoiEdge(start, direction, ray, axis, sin_theta);
+      if (!clip.meets)
+        continue;
+      marks[*c][self] |= static_cast<std::uint8_t>(1u << i);
+      if (clip.unbounded)
+        radius2 = std::numeric_limits<double>::infinity();
+      else if (clip.max_distance2 > radius2)
+        radius2 = clip.max_distance2;
+    }
+  }
+  return std::sqrt(radius2);
+}
+
 /** Circumcenters, poles, heights, radii and cocone marks of every sample, and the
  * marked triangles with their incidence lists. */
 void
@@ -570,8 +651,8 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
   Delaunay& dt = d.dt;
   const std::size_t n = d.representative.size();
 
-  // Number the finite cells, in container order; the infinite ones follow them in
-  // all_cells. One pass: touching every cell is what costs at a million points.
+  // Number the cells: the finite ones in container order, then the infinite ones.
+  // One pass: touching every cell is what costs at a million points.
   std::vector<CellHandle> all_cells, infinite_cells;
   all_cells.reserve(dt.number_of_cells());
   for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
@@ -583,35 +664,44 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
     all_cells.push_back(c);
   }
   const std::size_t finite_cells = all_cells.size();
-  all_cells.insert(all_cells.end(), infinite_cells.begin(), infinite_cells.end());
+  for (const CellHandle c : infinite_cells) {
+    c->cellIndex() = static_cast<std::uint32_t>(all_cells.size());
+    all_cells.push_back(c);
+  }
+  std::vector<CellHandle>().swap(infinite_cells);
 
-  // Each circumcenter once, before any concurrent read.
-  std::vector<Eigen::Vector3d> centers(finite_cells);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, finite_cells, 4096),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t k = range.begin(); k != range.end(); ++k)
-                        centers[k] = circumcenter(all_cells[k]);
-                    });
-
-  std::vector<VertexHandle> vertices;
-  vertices.reserve(d.unique_count);
+  // The samples in the triangulation's vertex order, which is its insertion order, a
+  // spatial one: neighbouring samples share the cells of their stars.
+  std::vector<SampleIndex> samples_in_order;
+  samples_in_order.reserve(d.unique_count);
   for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
-    vertices.push_back(v);
+    samples_in_order.push_back(v->info());
 
   // The star of every vertex at once (cells by sample, infinite cells after the
   // finite ones): passes over the cells instead of a search per vertex, which measured
-  // twice as slow. The samples of every cell (kNoSample for the infinite vertex) are
-  // read once, in parallel, so these passes scan a flat array instead of handles.
-  std::vector<std::array<SampleIndex, 4> > cell_samples(all_cells.size());
+  // twice as slow. The samples, neighbours and circumcenter of every cell are read
+  // once, in parallel, so that these passes and the per-sample one scan flat arrays.
+  std::vector<Eigen::Vector3d> centers(finite_cells);
+  CellTable cells;
+  cells.finite = finite_cells;
+  cells.samples.resize(all_cells.size());
+  cells.neighbours.resize(all_cells.size());
   const VertexHandle infinite = dt.infinite_vertex();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, all_cells.size(), 4096),
                     [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t k = range.begin(); k != range.end(); ++k)
+                      for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                        const CellHandle c = all_cells[k];
                         for (int j = 0; j < 4; ++j) {
-                          const VertexHandle v = all_cells[k]->vertex(j);
-                          cell_samples[k][j] = v == infinite ? kNoSample : v->info();
+                          const VertexHandle v = c->vertex(j);
+                          cells.samples[k][j] = v == infinite ? kNoSample : v->info();
+                          cells.neighbours[k][j] = c->neighbor(j)->cellIndex();
                         }
+                        if (k < finite_cells)
+                          centers[k] = circumcenter(c);
+                      }
                     });
+  std::vector<CellHandle>().swap(all_cells); // the table holds all that is read below
+  const std::vector<std::array<SampleIndex, 4> >& cell_samples = cells.samples;
   // Star lists in cell order, filled by a few blocks of cells at once: each block
   // counts its cells per sample, so it knows where in each list its own cells go.
   constexpr std::size_t kBlocks = 4;
@@ -645,6 +735,7 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
         if (s != kNoSample)
           star_cells[cursor[b][s]++] = static_cast<std::uint32_t>(k);
   });
+  std::vector<std::vector<std::uint32_t> >().swap(cursor);
 
   d.pole_vector.assign(n, Eigen::Vector3d::Zero());
   d.positive_pole.assign(n, Eigen::Vector3d::Zero());
@@ -656,30 +747,24 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
   // marks[c][j] bit i: vertex j of cell c marks facet i of c. Only the thread handling
   // vertex j writes that byte, so no synchronisation is needed.
   std::vector<std::array<std::uint8_t, 4> > marks(finite_cells, {0, 0, 0, 0});
-  tbb::enumerable_thread_specific<std::vector<CellHandle>> stars;
+  const std::vector<Eigen::Vector3d>& points = d.centered; // the vertices' coordinates
   tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, vertices.size(), 512),
+      tbb::blocked_range<std::size_t>(0, samples_in_order.size(), 512),
       [&](const tbb::blocked_range<std::size_t>& range) {
-        std::vector<CellHandle>& star = stars.local();
         CellGeometry geometry;
         for (std::size_t k = range.begin(); k != range.end(); ++k) {
-          const VertexHandle v = vertices[k];
-          star.clear();
-          for (std::uint32_t m = star_offsets[v->info()]; m < star_offsets[v->info() + 1];
-               ++m)
-            star.push_back(all_cells[star_cells[m]]);
-          computePoles(dt, v, star, centers, geometry);
-          const SampleIndex s = v->info();
+          const SampleIndex s = samples_in_order[k];
+          const std::uint32_t* star_begin = star_cells.data() + star_offsets[s];
+          const std::uint32_t* star_end = star_cells.data() + star_offsets[s + 1];
+          computePoles(cells, centers, points, s, star_begin, star_end, geometry);
           d.pole_vector[s] = geometry.pole_vector;
           d.positive_pole[s] = geometry.positive_pole;
           d.negative_pole[s] = geometry.negative_pole;
           d.height[s] = geometry.height;
           d.unbounded[s] = geometry.unbounded ? 1 : 0;
-          d.radius[s] = computeCoconeRadius(
-              dt, v, star, centers, geometry.pole_vector, sin_theta,
-              [&](CellHandle c, int i) {
-                marks[c->cellIndex()][c->index(v)] |= static_cast<std::uint8_t>(1u << i);
-              });
+          d.radius[s] =
+              computeCoconeRadius(cells, centers, points, s, star_begin, star_end,
+                                  geometry.pole_vector, sin_theta, marks);
         }
       });
 
@@ -703,8 +788,8 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
         }
         if (triangle.marked_by == 0)
           continue;
-        const CellHandle nb = all_cells[k]->neighbor(i);
-        if (!dt.is_infinite(nb) && nb->cellIndex() < k)
+        const std::uint32_t nb = cells.neighbours[k][i];
+        if (cells.isFinite(nb) && nb < k)
           continue;
         found[b].push_back(triangle);
       }
