@@ -970,8 +970,10 @@ TEST(VoronoiDecimation, RelaxationEvensOutTheSampleAtTheSameSize)
   std::cout << "[ measured ] sphere 6000 at rho 0.3, " << own.size()
             << " kept: covering radius " << cover_own << " -> " << cover_relaxed
             << ", mesh to sphere " << error_own << " -> " << error_relaxed << std::endl;
-  EXPECT_LT(cover_relaxed, 0.9 * cover_own);
-  EXPECT_LT(error_relaxed, 0.9 * error_own);
+  // Measured 0.72 and 0.55; relaxing among the input points alone (the generators
+  // snapped to samples every round) reached 0.84 and 0.69.
+  EXPECT_LT(cover_relaxed, 0.8 * cover_own);
+  EXPECT_LT(error_relaxed, 0.65 * error_own);
   EXPECT_TRUE(mesh_relaxed.topology.isClosed());
   EXPECT_EQ(mesh_relaxed.topology.genus(), 0);
   EXPECT_EQ(mesh_relaxed.points.size(), relaxed.size());

@@ -432,14 +432,16 @@ spatialOrder(const std::vector<Eigen::Vector3d>& points, unsigned threads = 0);
 
 /** \brief Beyond the paper: evens out a decimated sample, keeping its size.
  *
- * Lloyd's iteration restricted to the input: each kept sample moves to the input sample
- * nearest the centroid of the samples whose nearest kept sample it is (weighted by the
- * share of the surface each stands for, its squared cocone radius on the full sample),
- * until fewer than 1% of the kept samples move in a round, or \a iterations rounds.
- * A kept sample stays where it is when it, or a sample of its cluster, is \a fixed.
+ * Lloyd's iteration over the input samples: each kept sample starts a generator; every
+ * round, each generator moves to the centroid of the samples nearest to it (weighted by
+ * the share of the surface each stands for, its squared cocone radius on the full
+ * sample), and the sample of its cluster nearest to it is the one it would keep. The
+ * rounds stop when fewer than 1% of those choices change, or after \a iterations. The
+ * generators move freely between rounds; only the choices are samples. A generator
+ * stays on its kept sample when it, or a sample of its cluster, is \a fixed.
  * Deterministic.
- * \param[in] voronoi the diagram of the full sample, from compute(); decimate() may have
- *            run since (only positions and cocone radii are read)
+ * \param[in] voronoi the diagram of the full sample, from compute(); decimate() may
+ *            have run since (only positions and cocone radii are read)
  * \param[in] fixed per sample (size voronoi.size()): 1 for samples that must not move
  *            and hold the kept sample nearest them (BOUNDARY's flags: rims, sharp
  *            features)
@@ -447,7 +449,7 @@ spatialOrder(const std::vector<Eigen::Vector3d>& points, unsigned threads = 0);
  * \param[in] threads worker threads (0: every core)
  * \param[in,out] kept per sample (size voronoi.size()): 1 for a kept sample; the count
  *            never changes, duplicates are never chosen
- * \return the number of moves made; 0 also when a size does not match */
+ * \return the number of kept samples replaced; 0 also when a size does not match */
 PCL_COCONE_EXPORT std::size_t
 relaxDecimatedSample(const VoronoiCocone& voronoi,
                      const std::vector<std::uint8_t>& fixed,
