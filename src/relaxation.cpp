@@ -43,8 +43,8 @@ surfaceShares(const VoronoiCocone& voronoi)
   return share;
 }
 
-/** The Delaunay graph of the kept samples (CSR by site slot): on it, a walk that always
- * steps to a neighbour closer to the query ends at the query's nearest site. Read-only
+/** The Delaunay graph of the generators (CSR by slot): on it, a walk that always steps
+ * to a neighbour closer to the query ends at the query's nearest generator. Read-only
  * arrays, so any number of threads may walk at once. */
 struct SiteGraph
 {
@@ -69,12 +69,33 @@ struct SiteGraph
     std::vector<detail::VertexHandle> vertex_of(count);
     for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
       vertex_of[v->info()] = v;
+    // Generators at the same point share a vertex (CGAL keeps one of them). The others
+    // join its slot's neighbours, and take its neighbours and that slot as their own:
+    // a walk reaches them, leaves them, and breaks their ties like any other.
+    std::vector<std::uint32_t> host(count);
+    std::vector<std::pair<std::uint32_t, std::uint32_t> > guests; // (host, guest)
     for (std::size_t k = 0; k < count; ++k) {
+      host[k] = static_cast<std::uint32_t>(k);
+      if (vertex_of[k] == detail::VertexHandle()) {
+        const Eigen::Vector3d& p = position[k];
+        host[k] = dt.nearest_vertex(detail::Point(p.x(), p.y(), p.z()))->info();
+        guests.emplace_back(host[k], static_cast<std::uint32_t>(k));
+      }
+    }
+    std::sort(guests.begin(), guests.end());
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::uint32_t h = host[k];
       adjacent.clear();
-      if (vertex_of[k] != detail::VertexHandle())
-        dt.finite_adjacent_vertices(vertex_of[k], std::back_inserter(adjacent));
+      dt.finite_adjacent_vertices(vertex_of[h], std::back_inserter(adjacent));
       for (const detail::VertexHandle& w : adjacent)
         neighbours.push_back(w->info());
+      if (h != k)
+        neighbours.push_back(h);
+      for (auto g =
+               std::lower_bound(guests.begin(), guests.end(), std::make_pair(h, 0u));
+           g != guests.end() && g->first == h; ++g)
+        if (g->second != k)
+          neighbours.push_back(g->second);
       offsets[k + 1] = static_cast<std::uint32_t>(neighbours.size());
     }
   }
@@ -169,7 +190,8 @@ relaxDecimatedSample(const VoronoiCocone& voronoi,
     // unless the cluster holds a fixed sample: it borders a rim or a sharp feature,
     // where the centroid lies on the inner side (on the 10k monkey saddle moving those
     // left 158 of 313 samples flagged by the reconstruction, against 130, and a notch
-    // at the rim).
+    // at the rim). A held generator stays where it is: on its kept sample when it has
+    // been held from the start.
     std::fill(centroid.begin(), centroid.end(), Eigen::Vector3d::Zero());
     std::fill(mass.begin(), mass.end(), 0.0);
     std::fill(held.begin(), held.end(), 0);
@@ -180,12 +202,10 @@ relaxDecimatedSample(const VoronoiCocone& voronoi,
         held[owner[i]] = held[owner[i]] || fixed[i];
       }
     for (std::size_t k = 0; k < m; ++k)
-      if (held[k])
-        position[k] = points[sites[k]];
-      else if (mass[k] > 0)
+      if (!held[k] && mass[k] > 0)
         position[k] = centroid[k] / mass[k];
-    // The sample of each cluster nearest its generator (ties to the smaller index);
-    // a held slot keeps its own sample.
+    // The sample of each cluster nearest its generator (ties to the smaller index).
+    // Clusters are disjoint, so no two slots choose the same sample.
     std::fill(chosen.begin(), chosen.end(), kNoSample);
     std::fill(chosen2.begin(), chosen2.end(), std::numeric_limits<double>::infinity());
     for (SampleIndex i = 0; i < n; ++i) {
@@ -198,30 +218,23 @@ relaxDecimatedSample(const VoronoiCocone& voronoi,
         chosen[k] = i;
       }
     }
-    bool complete = true;
-    for (std::size_t k = 0; k < m; ++k) {
-      if (held[k])
-        chosen[k] = sites[k];
-      complete = complete && chosen[k] != kNoSample;
-    }
-    if (!complete)
-      break; // an empty cluster: keep the last complete choice
+    if (std::find(chosen.begin(), chosen.end(), kNoSample) != chosen.end())
+      break; // an empty cluster (it has no sample to keep): keep the last choice
     std::size_t changed = 0;
     for (std::size_t k = 0; k < m; ++k)
       changed += chosen[k] != answer[k];
     answer.swap(chosen);
     // A round costs a triangulation of the generators: stop when fewer than 1% of the
-    // choices change (the bunny at rho 0.3: 1321, 442, 196, then 70 of 14087).
+    // choices change (the bunny at rho 0.3: 2031, 1321, 442, 196, then 70 of 14087).
     if (changed * 100 < m)
       break;
   }
-  // Clusters are disjoint and a held slot's own sample is in its cluster (its
-  // generator sits on it), so the answers are distinct: the count stays.
-  std::size_t moves = 0;
-  for (std::size_t k = 0; k < m; ++k) {
+  // The answers come from disjoint clusters, so they are distinct and the count stays.
+  std::size_t moves = 0; // kept samples replaced
+  for (std::size_t k = 0; k < m; ++k)
+    moves += !kept[answer[k]];
+  for (std::size_t k = 0; k < m; ++k)
     kept[sites[k]] = 0;
-    moves += answer[k] != sites[k];
-  }
   for (std::size_t k = 0; k < m; ++k)
     kept[answer[k]] = 1;
   return moves;

@@ -10,6 +10,7 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <new>
@@ -231,15 +232,6 @@ clipVoronoiEdge(const Eigen::Vector3d& start,
   }
   result.max_distance2 = best;
   return result;
-}
-
-// ---------------------------------------------------------------------------------
-Eigen::Vector3d
-circumcenter(CellHandle c)
-{
-  const Point center = CGAL::circumcenter(c->vertex(0)->point(), c->vertex(1)->point(),
-                                          c->vertex(2)->point(), c->vertex(3)->point());
-  return {center.x(), center.y(), center.z()};
 }
 
 } // namespace detail
@@ -487,9 +479,18 @@ VoronoiCocone::delaunayTrianglesAmong(
 // ---------------------------------------------------------------------------------
 namespace {
 
+/** The circumcenter of a finite cell (its Voronoi vertex). */
+Eigen::Vector3d
+circumcenter(CellHandle c)
+{
+  const Point center = CGAL::circumcenter(c->vertex(0)->point(), c->vertex(1)->point(),
+                                          c->vertex(2)->point(), c->vertex(3)->point());
+  return {center.x(), center.y(), center.z()};
+}
+
 /** The triangulation as flat arrays by cell number, finite cells first and the
  * infinite ones after them. The per-sample pass reads these instead of CGAL's cells,
- * which lie scattered in memory: following a handle there was what it waited on. */
+ * which lie scattered in memory: cache misses on cell handles dominated the pass. */
 struct CellTable
 {
   std::vector<std::array<SampleIndex, 4> > samples; // kNoSample: the infinite vertex
@@ -502,6 +503,7 @@ struct CellTable
   int indexOf(std::uint32_t k, SampleIndex s) const
   {
     const std::array<SampleIndex, 4>& v = samples[k];
+    assert(v[0] == s || v[1] == s || v[2] == s || v[3] == s);
     return v[0] == s ? 0 : v[1] == s ? 1 : v[2] == s ? 2 : 3;
   }
 
@@ -509,6 +511,7 @@ struct CellTable
   int facetTowards(std::uint32_t k, std::uint32_t n) const
   {
     const std::array<std::uint32_t, 4>& c = neighbours[k];
+    assert(c[0] == n || c[1] == n || c[2] == n || c[3] == n);
     return c[0] == n ? 0 : c[1] == n ? 1 : c[2] == n ? 2 : 3;
   }
 };
@@ -701,11 +704,10 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
                       }
                     });
   std::vector<CellHandle>().swap(all_cells); // the table holds all that is read below
-  const std::vector<std::array<SampleIndex, 4> >& cell_samples = cells.samples;
   // Star lists in cell order, filled by a few blocks of cells at once: each block
   // counts its cells per sample, so it knows where in each list its own cells go.
   constexpr std::size_t kBlocks = 4;
-  const std::size_t block_size = (cell_samples.size() + kBlocks - 1) / kBlocks;
+  const std::size_t block_size = (cells.samples.size() + kBlocks - 1) / kBlocks;
   // Block b of the cells [0, count).
   const auto blockRange = [&](std::size_t b, std::size_t count) {
     return std::make_pair(std::min(b * block_size, count),
@@ -714,9 +716,9 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
   std::vector<std::vector<std::uint32_t> > cursor(kBlocks);
   tbb::parallel_for(std::size_t(0), kBlocks, [&](std::size_t b) {
     cursor[b].assign(n, 0);
-    const auto [first, last] = blockRange(b, cell_samples.size());
+    const auto [first, last] = blockRange(b, cells.samples.size());
     for (std::size_t k = first; k < last; ++k)
-      for (const SampleIndex s : cell_samples[k])
+      for (const SampleIndex s : cells.samples[k])
         if (s != kNoSample)
           ++cursor[b][s];
   });
@@ -729,9 +731,9 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
   }
   std::vector<std::uint32_t> star_cells(star_offsets[n]);
   tbb::parallel_for(std::size_t(0), kBlocks, [&](std::size_t b) {
-    const auto [first, last] = blockRange(b, cell_samples.size());
+    const auto [first, last] = blockRange(b, cells.samples.size());
     for (std::size_t k = first; k < last; ++k)
-      for (const SampleIndex s : cell_samples[k])
+      for (const SampleIndex s : cells.samples[k])
         if (s != kNoSample)
           star_cells[cursor[b][s]++] = static_cast<std::uint32_t>(k);
   });
@@ -782,7 +784,7 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
         triangle.marked_by = 0;
         for (int m = 0; m < 3; ++m) {
           const int j = (i + 1 + m) & 3;
-          triangle.vertex[m] = cell_samples[k][j];
+          triangle.vertex[m] = cells.samples[k][j];
           if ((marks[k][j] >> i) & 1u)
             triangle.marked_by |= static_cast<std::uint8_t>(1u << m);
         }

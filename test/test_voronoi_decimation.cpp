@@ -1031,6 +1031,23 @@ TEST(VoronoiDecimation, RelaxationCoreKeepsCountAndFixedSamples)
   std::vector<std::uint8_t> held = kept;
   EXPECT_EQ(pcl::cocone::relaxDecimatedSample(voronoi, all, 5, 0, held), 0u);
   EXPECT_EQ(held, kept);
+
+  // Some fixed samples among free ones: clusters gain and lose fixed samples as the
+  // generators move, and still no two slots may end on one sample. A kept fixed sample
+  // stays kept.
+  for (const std::size_t fixed_step : {3u, 5u, 13u, 31u}) {
+    std::vector<std::uint8_t> some(points.size(), 0);
+    for (std::size_t i = 0; i < points.size(); i += fixed_step)
+      some[i] = 1;
+    std::vector<std::uint8_t> partly = kept;
+    EXPECT_GT(pcl::cocone::relaxDecimatedSample(voronoi, some, 20, 0, partly), 0u);
+    EXPECT_EQ(static_cast<std::size_t>(std::count(partly.begin(), partly.end(), 1)),
+              count)
+        << "every " << fixed_step << "th sample fixed";
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (kept[i] && some[i])
+        EXPECT_TRUE(partly[i]) << "fixed sample " << i << " left";
+  }
   std::vector<std::uint8_t> untouched = kept;
   EXPECT_EQ(pcl::cocone::relaxDecimatedSample(voronoi, none, 0, 0, untouched), 0u);
   EXPECT_EQ(untouched, kept);
