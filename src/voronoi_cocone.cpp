@@ -495,6 +495,7 @@ struct CellTable
 {
   std::vector<std::array<SampleIndex, 4> > samples; // kNoSample: the infinite vertex
   std::vector<std::array<std::uint32_t, 4> > neighbours; // the cell across facet i
+  std::vector<Eigen::Vector3d> centers; // circumcenters of the finite cells
   std::size_t finite = 0;
 
   bool isFinite(std::uint32_t k) const { return k < finite; }
@@ -547,10 +548,9 @@ hullFacetNormal(const CellTable& cells, const std::vector<Eigen::Vector3d>& poin
 /** The poles, pole vector and height of the cell of sample \a s, from the cells of its
  * star. */
 void
-computePoles(const CellTable& cells, const std::vector<Eigen::Vector3d>& centers,
-             const std::vector<Eigen::Vector3d>& points, SampleIndex s,
-             const std::uint32_t* star_begin, const std::uint32_t* star_end,
-             CellGeometry& geometry)
+computePoles(const CellTable& cells, const std::vector<Eigen::Vector3d>& points,
+             SampleIndex s, const std::uint32_t* star_begin,
+             const std::uint32_t* star_end, CellGeometry& geometry)
 {
   const Eigen::Vector3d& p = points[s];
   Eigen::Vector3d hull_normal_sum = Eigen::Vector3d::Zero();
@@ -565,10 +565,10 @@ computePoles(const CellTable& cells, const std::vector<Eigen::Vector3d>& centers
           hullFacetNormal(cells, points, inside, cells.facetTowards(inside, *c));
       continue;
     }
-    const double d2 = (centers[*c] - p).squaredNorm();
+    const double d2 = (cells.centers[*c] - p).squaredNorm();
     if (d2 > farthest2) {
       farthest2 = d2;
-      geometry.positive_pole = centers[*c];
+      geometry.positive_pole = cells.centers[*c];
     }
   }
   if (geometry.unbounded) {
@@ -589,7 +589,7 @@ computePoles(const CellTable& cells, const std::vector<Eigen::Vector3d>& centers
   for (const std::uint32_t* c = star_begin; c != star_end; ++c) {
     if (!cells.isFinite(*c))
       continue;
-    const Eigen::Vector3d to_center = centers[*c] - p;
+    const Eigen::Vector3d to_center = cells.centers[*c] - p;
     if (to_center.dot(geometry.pole_vector) >= 0)
       continue;
     const double d2 = to_center.squaredNorm();
@@ -611,11 +611,10 @@ computePoles(const CellTable& cells, const std::vector<Eigen::Vector3d>& centers
  * clipped from that side, and the rounding must not change from run to run). An edge
  * that meets the cocone marks the facet: bit i of marks[c][position of s in c]. */
 double
-computeCoconeRadius(const CellTable& cells, const std::vector<Eigen::Vector3d>& centers,
-                    const std::vector<Eigen::Vector3d>& points, SampleIndex s,
-                    const std::uint32_t* star_begin, const std::uint32_t* star_end,
-                    const Eigen::Vector3d& axis, double sin_theta,
-                    std::vector<std::array<std::uint8_t, 4> >& marks)
+computeCoconeRadius(const CellTable& cells, const std::vector<Eigen::Vector3d>& points,
+                    SampleIndex s, const std::uint32_t* star_begin,
+                    const std::uint32_t* star_end, const Eigen::Vector3d& axis,
+                    double sin_theta, std::vector<std::array<std::uint8_t, 4> >& marks)
 {
   const Eigen::Vector3d& p = points[s];
   double radius2 = 0;
@@ -630,9 +629,10 @@ computeCoconeRadius(const CellTable& cells, const std::vector<Eigen::Vector3d>& 
       const bool ray = !cells.isFinite(n);
       if (!ray && n < *c)
         continue; // visited from n
-      const Eigen::Vector3d start = centers[*c] - p;
-      const Eigen::Vector3d direction = ray ? hullFacetNormal(cells, points, *c, i)
-                                            : Eigen::Vector3d(centers[n] - p - start);
+      const Eigen::Vector3d start = cells.centers[*c] - p;
+      const Eigen::Vector3d direction =
+          ray ? hullFacetNormal(cells, points, *c, i)
+              : Eigen::Vector3d(cells.centers[n] - p - start);
       const EdgeInCocone clip = clipVoronoiEdge(start, direction, ray, axis, sin_theta);
       if (!clip.meets)
         continue;
@@ -684,9 +684,9 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
   // finite ones): passes over the cells instead of a search per vertex, which measured
   // twice as slow. The samples, neighbours and circumcenter of every cell are read
   // once, in parallel, so that these passes and the per-sample one scan flat arrays.
-  std::vector<Eigen::Vector3d> centers(finite_cells);
   CellTable cells;
   cells.finite = finite_cells;
+  cells.centers.resize(finite_cells);
   cells.samples.resize(all_cells.size());
   cells.neighbours.resize(all_cells.size());
   const VertexHandle infinite = dt.infinite_vertex();
@@ -700,7 +700,7 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
                           cells.neighbours[k][j] = c->neighbor(j)->cellIndex();
                         }
                         if (k < finite_cells)
-                          centers[k] = circumcenter(c);
+                          cells.centers[k] = circumcenter(c);
                       }
                     });
   std::vector<CellHandle>().swap(all_cells); // the table holds all that is read below
@@ -758,23 +758,22 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
           const SampleIndex s = samples_in_order[k];
           const std::uint32_t* star_begin = star_cells.data() + star_offsets[s];
           const std::uint32_t* star_end = star_cells.data() + star_offsets[s + 1];
-          computePoles(cells, centers, points, s, star_begin, star_end, geometry);
+          computePoles(cells, points, s, star_begin, star_end, geometry);
           d.pole_vector[s] = geometry.pole_vector;
           d.positive_pole[s] = geometry.positive_pole;
           d.negative_pole[s] = geometry.negative_pole;
           d.height[s] = geometry.height;
           d.unbounded[s] = geometry.unbounded ? 1 : 0;
-          d.radius[s] =
-              computeCoconeRadius(cells, centers, points, s, star_begin, star_end,
-                                  geometry.pole_vector, sin_theta, marks);
+          d.radius[s] = computeCoconeRadius(cells, points, s, star_begin, star_end,
+                                            geometry.pole_vector, sin_theta, marks);
         }
       });
 
   // Collect the marked triangles, each from the cell that owns its facet (the same
   // rule computeCoconeRadius uses), in cell order: deterministic.
   // Most facets are marked by none of their vertices: those are skipped on the marks
-  // alone, without reading the neighbouring cell. Blocks of cells in parallel, joined
-  // in cell order.
+  // alone, before their neighbouring cell is looked up. Blocks of cells in parallel,
+  // joined in cell order.
   std::vector<std::vector<MarkedTriangle> > found(kBlocks);
   tbb::parallel_for(std::size_t(0), kBlocks, [&](std::size_t b) {
     const auto [first, last] = blockRange(b, finite_cells);
