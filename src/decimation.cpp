@@ -79,7 +79,7 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
 {
   Impl& d = *impl_;
   levels = DecimationLevels();
-  if (d.vertex_of.empty() && d.unique_count > 0) {
+  if (d.stars.empty() && d.unique_count > 0) {
     d.message = "the triangulation was already consumed by an earlier decimate()";
     return Status::not_computed;
   }
@@ -190,17 +190,16 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
     runInArena(threads_, [&] {
       // Delaunay neighbours of the candidates: only their lists are ever read. A rim
       // sample is measured on its cut cell here.
-      tbb::enumerable_thread_specific<StarGatherer> gatherers;
+      tbb::enumerable_thread_specific<SampleMarks> marks;
       tbb::enumerable_thread_specific<CoconeCellClipper> clippers;
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 256),
                         [&](const tbb::blocked_range<std::size_t>& range) {
-                          StarGatherer& gatherer = gatherers.local();
+                          SampleMarks& seen = marks.local();
                           std::vector<Eigen::Vector3d> offsets;
                           for (std::size_t k = range.begin(); k != range.end(); ++k) {
                             const SampleIndex s = candidates[k];
-                            const VertexHandle v = d.vertex_of[s];
                             std::vector<SampleIndex>& list = adjacency[s];
-                            gatherer.appendNeighbours(d.dt, v, list);
+                            d.stars.appendNeighbours(s, seen, list);
                             compact(list, s, alive);
                             const CoconeFrame frame = frame_of(s);
                             if (!frame.cut)
@@ -234,9 +233,7 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
   }
 
   // The triangulation changes from here on: nothing derived from it applies any more.
-  d.dt.clear();
-  d.vertex_of.clear();
-  d.vertex_of.shrink_to_fit();
+  d.stars.clear();
   d.triangles.clear();
   d.triangles.shrink_to_fit();
   d.triangle_offsets.clear();

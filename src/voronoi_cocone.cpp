@@ -110,51 +110,7 @@ spatialOrder(const std::vector<Eigen::Vector3d>& points, unsigned threads)
 namespace detail {
 
 // ---------------------------------------------------------------------------------
-const std::vector<CellHandle>&
-StarGatherer::gather(VertexHandle v)
-{
-  // Breadth first through the facets that contain v. A star holds about 25 to 40
-  // cells, so a linear scan of what was found (contiguous, vectorized) beats hashing.
-  cells_.clear();
-  cells_.push_back(v->cell());
-  for (std::size_t head = 0; head < cells_.size(); ++head) {
-    const CellHandle c = cells_[head];
-    const int iv = c->index(v);
-    for (int i = 0; i < 4; ++i) {
-      if (i == iv)
-        continue;
-      const CellHandle n = c->neighbor(i); // shares facet i, which contains v
-      if (std::find(cells_.begin(), cells_.end(), n) == cells_.end())
-        cells_.push_back(n);
-    }
-  }
-  return cells_;
-}
-
-void
-StarGatherer::appendNeighbours(const Delaunay& dt, VertexHandle v, std::vector<SampleIndex>& out)
-{
-  // Each neighbour is in several cells of the star; the marks keep its first sighting.
-  seen_.clear();
-  for (const CellHandle& c : gather(v))
-    for (int j = 0; j < 4; ++j) {
-      const VertexHandle w = c->vertex(j);
-      if (w != v && !dt.is_infinite(w) && seen_.mark(w->info()))
-        out.push_back(w->info());
-    }
-}
-
-// ---------------------------------------------------------------------------------
 namespace {
-
-/** The calling thread's star gatherer, shared by the Delaunay look-ups below (they may
- * run on several threads at once; none calls another while using it). */
-StarGatherer&
-threadStarGatherer()
-{
-  thread_local StarGatherer gatherer;
-  return gatherer;
-}
 
 ConeSide
 classify(const Eigen::Vector3d& x, const Eigen::Vector3d& axis, double sin_theta)
@@ -407,14 +363,12 @@ void
 VoronoiCocone::delaunayNeighbours(SampleIndex i, std::vector<SampleIndex>& neighbours) const
 {
   neighbours.clear();
-  const VertexHandle v = impl_->vertex_of.empty()
-                             ? VertexHandle()
-                             : impl_->vertex_of[impl_->representative[i]];
-  if (v == VertexHandle())
+  if (impl_->stars.empty())
     return;
-  // Not CGAL's finite_adjacent_vertices, which marks cells in place: this one may run
-  // on several threads, and allocates nothing after a thread's first calls.
-  threadStarGatherer().appendNeighbours(impl_->dt, v, neighbours);
+  // Several threads may ask at once: per-thread scratch, which stops allocating after
+  // a thread's first calls.
+  thread_local SampleMarks seen;
+  impl_->stars.appendNeighbours(impl_->representative[i], seen, neighbours);
   std::sort(neighbours.begin(), neighbours.end());
 }
 
@@ -424,10 +378,10 @@ VoronoiCocone::delaunayTrianglesAmong(
     std::vector<std::array<SampleIndex, 3>>& triangles) const
 {
   triangles.clear();
-  if (impl_->vertex_of.empty())
+  const DelaunayStars& stars = impl_->stars;
+  if (stars.empty())
     return;
   // Several threads may ask at once (one hole each): per-thread scratch.
-  StarGatherer& star = threadStarGatherer();
   thread_local SampleMarks is_member;
   thread_local std::vector<SampleIndex> members;
   members.clear();
@@ -435,45 +389,43 @@ VoronoiCocone::delaunayTrianglesAmong(
   for (const SampleIndex s : samples)
     if (is_member.mark(impl_->representative[s]))
       members.push_back(impl_->representative[s]);
-  // A finite vertex that is a member: the infinite vertex's info is no sample.
-  const auto finite_member = [&](VertexHandle w) {
-    return !impl_->dt.is_infinite(w) && is_member.isMarked(w->info());
-  };
+  // kNoSample (the infinite vertex) is never marked.
   for (const SampleIndex s : members) {
-    const VertexHandle v = impl_->vertex_of[s];
-    if (v == VertexHandle())
-      continue;
-    for (const CellHandle& c : star.gather(v)) {
-      // Most cells at a hole's rim have only v and one other member: no facet of
+    for (std::uint32_t k = stars.offsets[s]; k < stars.offsets[s + 1]; ++k) {
+      const std::array<SampleIndex, 4>& cell = stars.cell_samples[stars.cells[k]];
+      // Most cells at a hole's rim have only s and one other member: no facet of
       // three members, told without looking at the facets.
       int in_cell = 0;
-      for (int j = 0; j < 4; ++j)
-        in_cell += finite_member(c->vertex(j));
+      for (const SampleIndex w : cell)
+        in_cell += is_member.isMarked(w);
       if (in_cell < 3)
         continue;
       for (int i = 0; i < 4; ++i) {
-        if (c->vertex(i) == v)
-          continue;
+        if (cell[i] == s)
+          continue; // the facet opposite s does not contain it
         std::array<SampleIndex, 3> t;
-        int k = 0;
+        int m = 0;
         bool keep = true;
         for (int j = 0; j < 4 && keep; ++j) {
           if (j == i)
             continue;
-          const VertexHandle w = c->vertex(j);
-          if (!finite_member(w))
+          if (!is_member.isMarked(cell[j]))
             keep = false;
           else
-            t[k++] = w->info();
+            t[m++] = cell[j];
         }
-        // Report each triangle from its smallest vertex, once (it is in two cells).
+        // Report each triangle from its smallest vertex; it lies in two cells, so the
+        // repeats go after sorting.
+        if (!keep)
+          continue;
         std::sort(t.begin(), t.end());
-        if (keep && t[0] == s && std::less<const void*>()(&*c, &*c->neighbor(i)))
+        if (t[0] == s)
           triangles.push_back(t);
       }
     }
   }
   std::sort(triangles.begin(), triangles.end());
+  triangles.erase(std::unique(triangles.begin(), triangles.end()), triangles.end());
 }
 
 // ---------------------------------------------------------------------------------
@@ -703,7 +655,10 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
                           cells.centers[k] = circumcenter(c);
                       }
                     });
-  std::vector<CellHandle>().swap(all_cells); // the table holds all that is read below
+  // The table holds all that is read from here on: CGAL's triangulation, the largest
+  // structure of the whole run, goes before the star lists are made.
+  std::vector<CellHandle>().swap(all_cells);
+  dt.clear();
   // Star lists in cell order, filled by a few blocks of cells at once: each block
   // counts its cells per sample, so it knows where in each list its own cells go.
   constexpr std::size_t kBlocks = 4;
@@ -804,6 +759,15 @@ computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
     d.triangles.insert(d.triangles.end(), block.begin(), block.end());
     std::vector<MarkedTriangle>().swap(block);
   }
+
+  // Stitching and decimation ask the triangulation for neighbours later: they get the
+  // cells' samples and the stars, not the rest of the table.
+  std::vector<std::array<std::uint32_t, 4> >().swap(cells.neighbours);
+  std::vector<Eigen::Vector3d>().swap(cells.centers);
+  std::vector<std::array<std::uint8_t, 4> >().swap(marks);
+  d.stars.cell_samples = std::move(cells.samples);
+  d.stars.offsets = std::move(star_offsets);
+  d.stars.cells = std::move(star_cells);
 
   // Incidence lists (CSR by sample).
   d.triangle_offsets.assign(n + 1, 0);
@@ -930,12 +894,8 @@ VoronoiCocone::compute(const std::vector<Eigen::Vector3d>& points)
         owner[i]->info() = std::min<SampleIndex>(owner[i]->info(), static_cast<SampleIndex>(i));
       }
       d.representative.resize(n);
-      d.vertex_of.assign(n, VertexHandle());
-      for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t i = 0; i < n; ++i)
         d.representative[i] = owner[i]->info();
-        if (d.representative[i] == i)
-          d.vertex_of[i] = owner[i];
-      }
     });
   }
   catch (const std::bad_alloc&) {

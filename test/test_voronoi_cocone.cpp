@@ -9,12 +9,17 @@
 
 #include <gtest/gtest.h>
 
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <random>
 #include <set>
@@ -470,6 +475,80 @@ TEST(VoronoiCocone, DelaunayNeighboursAreTheEdgesOfTheTriangulation)
   other.join();
   for (SampleIndex i = 0; i < big.size(); ++i)
     EXPECT_EQ(i % 2 ? odd[i] : even[i], expected[i]) << "sample " << i;
+}
+
+// The core answers its Delaunay queries from flat arrays it keeps after the geometry,
+// once CGAL's triangulation is freed: they must give what a triangulation of the same
+// points built here gives, convex hull and duplicates included, and nothing once
+// decimate() has consumed them.
+TEST(VoronoiCocone, DelaunayQueriesAgreeWithAnIndependentTriangulation)
+{
+  using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using Vertex = CGAL::Triangulation_vertex_base_with_info_3<SampleIndex, Kernel>;
+  using Triangulation = CGAL::Delaunay_triangulation_3<
+      Kernel, CGAL::Triangulation_data_structure_3<Vertex>>;
+
+  Points points = sampleTorus(2000, 5).points;
+  const Points cap = sampleHemisphere(300, 6).points; // a second part, its own hull
+  for (const Eigen::Vector3d& p : cap)
+    points.push_back(p * 0.3 + Eigen::Vector3d(3, 0, 0));
+  points.push_back(points[17]);
+  points.push_back(points[2100]);
+  VoronoiCocone voronoi;
+  ASSERT_EQ(voronoi.compute(points), Status::ok) << voronoi.errorMessage();
+
+  // The same points as CGAL sees them, named by the smallest index of each group.
+  std::map<std::array<double, 3>, SampleIndex> first_of;
+  std::vector<std::pair<Kernel::Point_3, SampleIndex>> input;
+  for (SampleIndex i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3d c = voronoi.centeredPoints()[i];
+    if (first_of.emplace(std::array<double, 3>{c.x(), c.y(), c.z()}, i).second)
+      input.emplace_back(Kernel::Point_3(c.x(), c.y(), c.z()), i);
+  }
+  const Triangulation reference(input.begin(), input.end());
+  ASSERT_EQ(reference.number_of_vertices(), voronoi.numUniqueSamples());
+
+  std::vector<std::vector<SampleIndex>> expected_neighbours(points.size());
+  for (auto v = reference.finite_vertices_begin(); v != reference.finite_vertices_end();
+       ++v) {
+    std::vector<Triangulation::Vertex_handle> adjacent;
+    reference.finite_adjacent_vertices(v, std::back_inserter(adjacent));
+    std::vector<SampleIndex>& list = expected_neighbours[v->info()];
+    for (const auto& w : adjacent)
+      list.push_back(w->info());
+    std::sort(list.begin(), list.end());
+  }
+  std::vector<SampleIndex> neighbours;
+  for (SampleIndex i = 0; i < points.size(); ++i) {
+    voronoi.delaunayNeighbours(i, neighbours);
+    EXPECT_EQ(neighbours, expected_neighbours[voronoi.representative(i)]) << "sample " << i;
+  }
+
+  std::vector<std::array<SampleIndex, 3>> expected_triangles;
+  for (auto f = reference.finite_facets_begin(); f != reference.finite_facets_end(); ++f) {
+    std::array<SampleIndex, 3> t;
+    for (int k = 0, m = 0; k < 4; ++k)
+      if (k != f->second)
+        t[m++] = f->first->vertex(k)->info();
+    std::sort(t.begin(), t.end());
+    expected_triangles.push_back(t);
+  }
+  std::sort(expected_triangles.begin(), expected_triangles.end());
+  std::vector<SampleIndex> all(points.size());
+  std::iota(all.begin(), all.end(), 0u);
+  std::vector<std::array<SampleIndex, 3>> triangles;
+  voronoi.delaunayTrianglesAmong(all, triangles);
+  EXPECT_EQ(triangles, expected_triangles);
+  std::cout << "[ measured ] " << voronoi.numUniqueSamples() << " distinct samples, "
+            << triangles.size() << " Delaunay triangles, "
+            << reference.number_of_finite_cells() << " finite cells" << std::endl;
+
+  DecimationLevels levels;
+  ASSERT_EQ(voronoi.decimate(0.3, levels), Status::ok) << voronoi.errorMessage();
+  voronoi.delaunayNeighbours(0, neighbours);
+  EXPECT_TRUE(neighbours.empty());
+  voronoi.delaunayTrianglesAmong(all, triangles);
+  EXPECT_TRUE(triangles.empty());
 }
 
 TEST(VoronoiCocone, DelaunayTrianglesAmongASmallSet)
