@@ -101,10 +101,13 @@ struct FileSpec
   std::string note;
   std::optional<PaperReconstructionRow> paper;
   std::optional<PaperDecimationRow> paper_decimation;
-  /** Known topology of the surface when the file has no faces (from the data folder's
-   * README): closed (1) or unknown (-1), genus. */
+  /** Topology of the sampled surface where it is known without faces (the data
+   * folder's README) or where the samples leave open what the file's faces close:
+   * closed (1), open (0) or unknown (-1), genus, boundary loops. When set, it replaces
+   * the topology of the file's faces; the note says why. */
   int closed = -1;
   long genus = -1;
+  long boundary_loops = -1;
 };
 
 /** \brief The data files of the benchmark (paper sets first, then real scans). */

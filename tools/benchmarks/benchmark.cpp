@@ -339,8 +339,9 @@ main(int argc, char** argv)
   text << targets.markdown() << "\n";
   text << "## Inputs\n\n"
        << "Spacing: mean distance from a sample to its nearest other sample; every distance "
-          "below is in these units. Reference topology as given by the generator or by "
-          "analyzeTriangleMesh on the file's faces.\n\n"
+          "below is in these units. Reference topology as given by the generator, by "
+          "analyzeTriangleMesh on the file's faces, or, where the note says so, by what the "
+          "samples cover (the cactus and the foot are open where no sample lies).\n\n"
        << inputsTable(context) << "\n";
 
   std::cout << "\n" << text.str();
