@@ -14,10 +14,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <limits>
 #include <random>
+#include <set>
 
 namespace {
 
@@ -567,9 +569,25 @@ TEST(CoconeReconstructionData, CactusUsesEveryDistinctSample)
             << " edges" << std::endl;
   // F = 2V - 4 + 2b - e holds for any genus-0 manifold; the paper's count means b = 1,
   // e = 20.
-  EXPECT_EQ(result.topology.boundary_loops.size(), 1u);
+  ASSERT_EQ(result.topology.boundary_loops.size(), 1u);
   EXPECT_EQ(loop_edges, 20u);
   EXPECT_EQ(result.topology.triangles, 6538u);
+  // The loop is a true boundary: the sample ends at the lowest z in a ring of 20
+  // points with none inside (the cactus is cut flat at its base), and the loop runs
+  // through exactly those.
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const pcl::PointXYZ& p : *data.cloud)
+    lowest = std::min<double>(lowest, p.z);
+  std::set<std::array<float, 3>> base, loop;
+  for (const pcl::PointXYZ& p : *data.cloud)
+    if (p.z == lowest)
+      base.insert({p.x, p.y, p.z});
+  for (const std::uint32_t v : result.topology.boundary_loops.front()) {
+    const pcl::PointXYZ& p = (*data.cloud)[v];
+    loop.insert({p.x, p.y, p.z});
+  }
+  EXPECT_EQ(base.size(), 20u);
+  EXPECT_EQ(loop, base);
 }
 
 // The Stanford bunny (zippered): open only at the holes of its base. Four of the five
