@@ -233,7 +233,6 @@ loadFileInput(const std::string& directory, const FileSpec& spec, Input& input, 
   input.note = spec.note;
   input.paper = spec.paper;
   input.paper_decimation = spec.paper_decimation;
-
   for (const pcl::PointXYZ& p : xyz)
     if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))
       input.points.emplace_back(p.x, p.y, p.z);
