@@ -232,7 +232,9 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
     }
   }
 
-  // The triangulation changes from here on: nothing derived from it applies any more.
+  // The triangulation changes from here on: nothing derived from it applies any more,
+  // however the run ends (a cancelled or failed run leaves no usable diagram either).
+  d.status = Status::not_computed;
   d.stars.clear();
   d.triangles.clear();
   d.triangles.shrink_to_fit();
@@ -341,8 +343,7 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
   levels.removals = removals;
   if (progress)
     progress(1.0);
-  // The triangulation is gone: what needs it must not run on the leftovers.
-  d.status = Status::not_computed;
+  // The triangulation is gone (status() says so since the clearing above).
   d.message = "the triangulation was consumed by decimate()";
   return Status::ok;
 }

@@ -703,6 +703,35 @@ TEST(VoronoiCocone, DecimateNeedsAFreshComputation)
   EXPECT_EQ(voronoi.decimate(0.3, levels), Status::ok);
 }
 
+// A cancelled decimate() has consumed the triangulation as much as a finished one: what
+// needs the diagram must refuse the leftovers, not run on empty candidate lists.
+TEST(VoronoiCocone, CancelledDecimationLeavesNoUsableDiagram)
+{
+  VoronoiCocone voronoi;
+  ASSERT_EQ(voronoi.compute(sampleSphere(6000, 3).points), Status::ok);
+  std::size_t calls = 0;
+  DecimationLevels levels;
+  EXPECT_EQ(voronoi.decimate(0.3, levels, [&](double) { return ++calls < 2; }),
+            Status::internal_error);
+  EXPECT_EQ(calls, 2u); // asked every 1024 removals: cancelled at the second
+  EXPECT_EQ(levels.removals, 2048u);
+  EXPECT_EQ(voronoi.errorMessage(), "cancelled");
+  EXPECT_EQ(voronoi.status(), Status::not_computed);
+  std::vector<pcl::cocone::TriangleIndices> triangles;
+  pcl::cocone::ReconstructionReport report;
+  EXPECT_EQ(pcl::cocone::reconstructSurface(voronoi, {}, triangles, report),
+            Status::not_computed);
+  EXPECT_TRUE(triangles.empty());
+  std::vector<SampleIndex> neighbours;
+  voronoi.delaunayNeighbours(0, neighbours);
+  EXPECT_TRUE(neighbours.empty());
+  EXPECT_EQ(voronoi.decimate(0.3, levels), Status::not_computed);
+  // A new compute() makes it usable again.
+  ASSERT_EQ(voronoi.compute(sampleSphere(6000, 3).points), Status::ok);
+  EXPECT_EQ(voronoi.decimate(0.3, levels), Status::ok);
+  EXPECT_GT(levels.removals, 2048u);
+}
+
 TEST(VoronoiCocone, OutOfRangeCoconeAngleIsRefused)
 {
   VoronoiCocone voronoi;
