@@ -580,7 +580,7 @@ runReconstructionSection(Context& context)
     if (!other_loops.empty())
       evidence += " (not on: " + join(other_loops) + ")";
     if (!sparse.empty())
-      evidence += "; fewer than 95% of the samples used on the open inputs: " + join(sparse);
+      evidence += "; fewer than 95% of the samples used on the other inputs: " + join(sparse);
     context.setTarget("no holes where closed",
                       "no boundary loop on inputs whose reference surface is closed, and "
                       "95% of their samples or more in the mesh",
