@@ -238,8 +238,9 @@ public:
 
   /** \brief Whether the diagram can be used.
    * \return Status::ok after a successful compute(); Status::not_computed before any,
-   *         and after decimate() (which consumes the triangulation: the per-sample
-   *         values of the full sample remain readable, but BOUNDARY and the
+   *         and once decimate() has begun its removals, also when it was then
+   *         cancelled or ran out of memory (it consumes the triangulation: the
+   *         per-sample values of the full sample remain readable, but BOUNDARY and the
    *         reconstruction refuse to run); otherwise the reason the last compute()
    *         failed */
   Status
