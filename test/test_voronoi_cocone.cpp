@@ -671,6 +671,24 @@ TEST(VoronoiCocone, DegenerateInputGivesTheDocumentedStatus)
   EXPECT_FALSE(voronoi.errorMessage().empty());
 }
 
+/** What needs the triangulation refuses to run on what decimate() left of it. */
+void
+expectConsumed(VoronoiCocone& voronoi)
+{
+  EXPECT_EQ(voronoi.status(), Status::not_computed);
+  std::vector<pcl::cocone::TriangleIndices> triangles;
+  pcl::cocone::ReconstructionReport report;
+  EXPECT_EQ(pcl::cocone::reconstructSurface(voronoi, {}, triangles, report),
+            Status::not_computed);
+  EXPECT_TRUE(triangles.empty());
+  std::vector<SampleIndex> neighbours;
+  voronoi.delaunayNeighbours(0, neighbours);
+  EXPECT_TRUE(neighbours.empty());
+  DecimationLevels levels;
+  EXPECT_EQ(voronoi.decimate(0.3, levels), Status::not_computed);
+  EXPECT_FALSE(voronoi.errorMessage().empty());
+}
+
 TEST(VoronoiCocone, DecimateNeedsAFreshComputation)
 {
   VoronoiCocone voronoi;
@@ -687,15 +705,7 @@ TEST(VoronoiCocone, DecimateNeedsAFreshComputation)
   EXPECT_GT(levels.removals, 0u);
   EXPECT_EQ(levels.level.size(), 1000u);
   EXPECT_TRUE(voronoi.markedTriangles().empty()); // consumed
-  // What needs the triangulation refuses to run on what is left of it.
-  EXPECT_EQ(voronoi.status(), Status::not_computed);
-  std::vector<pcl::cocone::TriangleIndices> triangles;
-  pcl::cocone::ReconstructionReport report;
-  EXPECT_EQ(pcl::cocone::reconstructSurface(voronoi, {}, triangles, report),
-            Status::not_computed);
-  EXPECT_TRUE(triangles.empty());
-  EXPECT_EQ(voronoi.decimate(0.3, levels), Status::not_computed);
-  EXPECT_FALSE(voronoi.errorMessage().empty());
+  expectConsumed(voronoi);
   std::cout << "[ measured ] second decimate(): " << voronoi.errorMessage()
             << std::endl;
   // A new compute() makes it usable again.
@@ -716,16 +726,7 @@ TEST(VoronoiCocone, CancelledDecimationLeavesNoUsableDiagram)
   EXPECT_EQ(calls, 2u); // asked every 1024 removals: cancelled at the second
   EXPECT_EQ(levels.removals, 2048u);
   EXPECT_EQ(voronoi.errorMessage(), "cancelled");
-  EXPECT_EQ(voronoi.status(), Status::not_computed);
-  std::vector<pcl::cocone::TriangleIndices> triangles;
-  pcl::cocone::ReconstructionReport report;
-  EXPECT_EQ(pcl::cocone::reconstructSurface(voronoi, {}, triangles, report),
-            Status::not_computed);
-  EXPECT_TRUE(triangles.empty());
-  std::vector<SampleIndex> neighbours;
-  voronoi.delaunayNeighbours(0, neighbours);
-  EXPECT_TRUE(neighbours.empty());
-  EXPECT_EQ(voronoi.decimate(0.3, levels), Status::not_computed);
+  expectConsumed(voronoi);
   // A new compute() makes it usable again.
   ASSERT_EQ(voronoi.compute(sampleSphere(6000, 3).points), Status::ok);
   EXPECT_EQ(voronoi.decimate(0.3, levels), Status::ok);
