@@ -208,7 +208,6 @@ clipVoronoiEdge(const Eigen::Vector3d& start,
  * indexed by input index and filled for representatives only. */
 struct VoronoiCocone::Impl
 {
-  detail::Delaunay dt; // empty once the geometry is computed: stars holds what is read
   Status status = Status::not_computed;
   VoronoiCocone::Timings timings;
   std::string message;

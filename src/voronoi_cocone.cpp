@@ -599,11 +599,10 @@ computeCoconeRadius(const CellTable& cells, const std::vector<Eigen::Vector3d>& 
 }
 
 /** Circumcenters, poles, heights, radii and cocone marks of every sample, and the
- * marked triangles with their incidence lists. */
+ * marked triangles with their incidence lists. Clears \a dt once its cells are read. */
 void
-computeGeometry(VoronoiCocone::Impl& d, double sin_theta)
+computeGeometry(Delaunay& dt, VoronoiCocone::Impl& d, double sin_theta)
 {
-  Delaunay& dt = d.dt;
   const std::size_t n = d.representative.size();
 
   // Number the cells: the finite ones in container order, then the infinite ones.
@@ -844,6 +843,9 @@ VoronoiCocone::compute(const std::vector<Eigen::Vector3d>& points)
     return std::chrono::duration<double>(Clock::now() - start).count();
   };
   const Clock::time_point start = Clock::now();
+  // The triangulation lives only through compute(): the geometry keeps what the
+  // queries after it read (Impl::stars) and frees it.
+  Delaunay dt;
   try {
     runInArena(threads_, [&] {
       d.offset = sum / static_cast<double>(n);
@@ -866,7 +868,7 @@ VoronoiCocone::compute(const std::vector<Eigen::Vector3d>& points)
             order.begin(), order.end(), SortTraits(CGAL::make_property_map(input)));
         VertexHandle hint;
         for (const std::size_t i : order) {
-          hint = d.dt.insert(input[i], hint);
+          hint = dt.insert(input[i], hint);
           if (hint != VertexHandle())
             hint->info() = static_cast<SampleIndex>(i);
         }
@@ -875,9 +877,9 @@ VoronoiCocone::compute(const std::vector<Eigen::Vector3d>& points)
       // Identical points collapse into one vertex. Map every input point to the
       // smallest index of its group, so nothing is lost or renumbered.
       std::vector<VertexHandle> owner(n);
-      for (auto v = d.dt.finite_vertices_begin(); v != d.dt.finite_vertices_end(); ++v)
+      for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
         owner[v->info()] = v;
-      d.unique_count = d.dt.number_of_vertices();
+      d.unique_count = dt.number_of_vertices();
       Delaunay::Cell_handle hint;
       for (std::size_t i = 0; i < n; ++i) {
         if (owner[i] != VertexHandle())
@@ -885,7 +887,7 @@ VoronoiCocone::compute(const std::vector<Eigen::Vector3d>& points)
         Delaunay::Locate_type type;
         int li, lj;
         const Point query(d.centered[i].x(), d.centered[i].y(), d.centered[i].z());
-        hint = d.dt.locate(query, type, li, lj, hint);
+        hint = dt.locate(query, type, li, lj, hint);
         if (type != Delaunay::VERTEX)
           throw std::runtime_error("a point missing from the triangulation is no vertex");
         owner[i] = hint->vertex(li);
@@ -908,8 +910,8 @@ VoronoiCocone::compute(const std::vector<Eigen::Vector3d>& points)
   if (d.unique_count < 4)
     return fail(Status::too_few_points,
                 "need at least 4 distinct points, got " + std::to_string(d.unique_count));
-  if (d.dt.dimension() < 3) {
-    const int dim = d.dt.dimension();
+  if (dt.dimension() < 3) {
+    const int dim = dt.dimension();
     return fail(Status::degenerate_dimension,
                 std::string("all points are ") + (dim == 2 ? "coplanar" : "collinear") +
                     ": no 3D Voronoi cell to measure");
@@ -921,7 +923,7 @@ VoronoiCocone::compute(const std::vector<Eigen::Vector3d>& points)
             n, d.unique_count, d.timings.delaunay);
   const Clock::time_point geometry_start = Clock::now();
   try {
-    runInArena(threads_, [&] { computeGeometry(d, std::sin(cocone_angle_)); });
+    runInArena(threads_, [&] { computeGeometry(dt, d, std::sin(cocone_angle_)); });
   }
   catch (const std::bad_alloc&) {
     return fail(Status::internal_error, "out of memory while computing Voronoi geometry");
