@@ -9,8 +9,8 @@
 // printed on lines starting with "[ measured ]" so that the margins can be read off a
 // test log; the data tests also record them with RecordProperty (XML/JSON output).
 #include <pcl/cocone/boundary_sample_estimation.h>
-#include <pcl/cocone/mesh_topology.h>
-#include <pcl/cocone/point_io.h>
+#include <pcl/cocone/core/mesh_topology.h>
+#include <pcl/cocone/io/point_io.h>
 #include <pcl/conversions.h>
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_cloud.h>

@@ -2,8 +2,8 @@
 // CoconeReconstruction: every output is an oriented 2-manifold without
 // self-intersection, and its topology is exactly that of the sampled surface.
 #include <pcl/cocone/cocone_reconstruction.h>
-#include <pcl/cocone/mesh_topology.h>
-#include <pcl/cocone/point_io.h>
+#include <pcl/cocone/core/mesh_topology.h>
+#include <pcl/cocone/io/point_io.h>
 #include <pcl/point_types.h>
 
 #include <support/clouds.h>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // analyzeTriangleMesh on small meshes whose topology is known by construction, and the
 // geometric checks of test/support/mesh_checks.h.
-#include <pcl/cocone/mesh_topology.h>
+#include <pcl/cocone/core/mesh_topology.h>
 
 #include "support/mesh_checks.h"
 

@@ -3,7 +3,7 @@
 // real data folder when it is there.
 #include "support/data_paths.h"
 
-#include <pcl/cocone/point_io.h>
+#include <pcl/cocone/io/point_io.h>
 #include <pcl/common/io.h>
 #include <pcl/conversions.h>
 #include <pcl/io/pcd_io.h>

@@ -2,7 +2,7 @@
 // The three command-line tools run as a user runs them: as processes, on clouds written
 // here, checking the exit code, the number of lines on stderr, the summary lines and
 // the files they write (read back with the library's own readers).
-#include <pcl/cocone/point_io.h>
+#include <pcl/cocone/io/point_io.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>

@@ -2,8 +2,8 @@
 // VoronoiCocone, the core shared by the three PCL classes: duplicates, the centred
 // frame, large coordinates, poles and heights against closed-form facts, the marked
 // triangles and their incidence lists, the documented errors, thread independence.
-#include <pcl/cocone/cocone_mesher.h>
-#include <pcl/cocone/voronoi_cocone.h>
+#include <pcl/cocone/core/reconstruction.h>
+#include <pcl/cocone/core/voronoi_cocone.h>
 
 #include <support/shapes.h>
 

@@ -4,10 +4,10 @@
 // removal, nested levels of detail, density equalisation, the paper's table 2, the
 // topology of the reconstruction after decimation (against VoxelGrid and
 // UniformSampling), and bad input.
-#include <pcl/cocone/boundary_samples.h>
+#include <pcl/cocone/core/boundary_samples.h>
 #include <pcl/cocone/cocone_reconstruction.h>
-#include <pcl/cocone/mesh_topology.h>
-#include <pcl/cocone/voronoi_cocone.h>
+#include <pcl/cocone/core/mesh_topology.h>
+#include <pcl/cocone/core/voronoi_cocone.h>
 #include <pcl/cocone/voronoi_decimation.h>
 #include <pcl/common/io.h>
 #include <pcl/filters/uniform_sampling.h>

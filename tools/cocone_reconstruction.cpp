@@ -7,7 +7,7 @@
 #include "tool_common.h"
 
 #include <pcl/cocone/cocone_reconstruction.h>
-#include <pcl/cocone/mesh_topology.h>
+#include <pcl/cocone/core/mesh_topology.h>
 #include <pcl/common/point_tests.h>
 #include <pcl/console/print.h>
 

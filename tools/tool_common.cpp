@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "tool_common.h"
 
-#include <pcl/cocone/point_io.h>
+#include <pcl/cocone/io/point_io.h>
 #include <pcl/common/io.h>
 #include <pcl/console/print.h>
 #include <pcl/conversions.h>

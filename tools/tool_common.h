@@ -14,7 +14,7 @@
 #pragma once
 
 #include <pcl/PCLPointCloud2.h>
-#include <pcl/cocone/mesh_topology.h>
+#include <pcl/cocone/core/mesh_topology.h>
 #include <pcl/cocone/parameters.h>
 #include <pcl/console/print.h>
 #include <pcl/console/time.h>

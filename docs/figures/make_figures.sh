@@ -40,7 +40,7 @@ data=$(cd "$data" && pwd)
 reconstruction=$build/tools/pcl_cocone_reconstruction
 decimation=$build/tools/pcl_voronoi_decimation
 boundary=$build/tools/pcl_boundary_sample_estimation
-render=$build/tools/render/pcl_cocone_render
+render=$build/apps/render/pcl_cocone_render
 for tool in "$reconstruction" "$decimation" "$boundary" "$render"; do
   [ -x "$tool" ] || die "$tool is missing: build it first (see the top of $0)"
 done

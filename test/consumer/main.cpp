@@ -5,7 +5,7 @@
 // error policy (empty result + getErrorMessage()) on input without a 3D Voronoi
 // diagram. Exit code 0 on success.
 #include <pcl/cocone/cocone_reconstruction.h>
-#include <pcl/cocone/mesh_topology.h>
+#include <pcl/cocone/core/mesh_topology.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 

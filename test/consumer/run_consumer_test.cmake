@@ -11,6 +11,7 @@
 #    the pipeline example's source as installed under share/doc;
 # 4. runs the installed cocone_pipeline (found through its $ORIGIN RPATH) on its demo.
 # WITH_EXAMPLE (set when the tools are built) enables the example parts of 3 and 4.
+# CONSUMER_PROGRAM names the consumer's executable (default: consumer).
 cmake_minimum_required(VERSION 3.16)
 
 foreach(var PROJECT_BUILD_DIR CONSUMER_SOURCE_DIR WORK_DIR)
@@ -19,6 +20,9 @@ foreach(var PROJECT_BUILD_DIR CONSUMER_SOURCE_DIR WORK_DIR)
   endif()
 endforeach()
 
+if(NOT CONSUMER_PROGRAM)
+  set(CONSUMER_PROGRAM consumer)
+endif()
 set(prefix ${WORK_DIR}/prefix)
 set(build ${WORK_DIR}/build)
 file(REMOVE_RECURSE ${WORK_DIR})
@@ -84,7 +88,7 @@ endif()
 run_step("configure consumer" ${CMAKE_COMMAND} -S ${CONSUMER_SOURCE_DIR} -B ${build}
   ${generator_args} -DCMAKE_PREFIX_PATH=${prefix} ${example_args})
 run_step("build consumer" ${CMAKE_COMMAND} --build ${build} --parallel 2)
-run_step("run consumer" ${build}/consumer)
+run_step("run consumer" ${build}/${CONSUMER_PROGRAM})
 message(STATUS "${step_output}")
 if(NOT WITH_EXAMPLE)
   message(STATUS "install test passed (tools not built: example not checked)")

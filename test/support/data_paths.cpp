@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "support/data_paths.h"
 
-#include <pcl/cocone/point_io.h>
+#include <pcl/cocone/io/point_io.h>
 #include <pcl/conversions.h>
 
 #include <cstdlib>

@@ -2,8 +2,8 @@
 // Geometric checks of reconstructed meshes, for tests and benchmarks (CGAL inside).
 #pragma once
 
-#include <pcl/cocone/mesh_geometry.h>
-#include <pcl/cocone/mesh_topology.h>
+#include <pcl/cocone/core/mesh_geometry.h>
+#include <pcl/cocone/core/mesh_topology.h>
 
 #include <Eigen/Core>
 
@@ -16,7 +16,7 @@ namespace pcl {
 namespace cocone {
 namespace test {
 
-// countSelfIntersections comes from the library: pcl/cocone/mesh_geometry.h.
+// countSelfIntersections comes from the library: pcl/cocone/core/mesh_geometry.h.
 
 /** Distances from a set of query points to a triangle mesh (AABB tree); +infinity
  * when the mesh has no triangle with area, 0 when there are no queries. */

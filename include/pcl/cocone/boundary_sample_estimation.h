@@ -5,9 +5,9 @@
  */
 #pragma once
 
-#include <pcl/cocone/boundary_samples.h>
+#include <pcl/cocone/core/boundary_samples.h>
 #include <pcl/cocone/export.h>
-#include <pcl/cocone/voronoi_cocone.h>
+#include <pcl/cocone/core/voronoi_cocone.h>
 #include <pcl/features/feature.h>
 #include <pcl/point_types.h>
 

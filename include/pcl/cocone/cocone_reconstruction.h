@@ -5,7 +5,7 @@
  */
 #pragma once
 
-#include <pcl/cocone/cocone_mesher.h>
+#include <pcl/cocone/core/reconstruction.h>
 #include <pcl/cocone/export.h>
 #include <pcl/surface/reconstruction.h>
 

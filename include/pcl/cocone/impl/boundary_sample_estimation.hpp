@@ -2,7 +2,7 @@
 #pragma once
 
 #include <pcl/cocone/boundary_sample_estimation.h>
-#include <pcl/cocone/cloud_samples.h>
+#include <pcl/cocone/core/cloud_samples.h>
 #include <pcl/cocone/parameters.h>
 #include <pcl/console/print.h>
 

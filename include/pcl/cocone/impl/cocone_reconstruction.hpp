@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
-#include <pcl/cocone/cloud_samples.h>
+#include <pcl/cocone/core/cloud_samples.h>
 #include <pcl/cocone/cocone_reconstruction.h>
 #include <pcl/cocone/parameters.h>
 #include <pcl/console/print.h>

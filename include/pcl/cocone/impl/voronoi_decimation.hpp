@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
-#include <pcl/cocone/boundary_samples.h>
-#include <pcl/cocone/cloud_samples.h>
+#include <pcl/cocone/core/boundary_samples.h>
+#include <pcl/cocone/core/cloud_samples.h>
 #include <pcl/cocone/parameters.h>
-#include <pcl/cocone/voronoi_cocone.h>
+#include <pcl/cocone/core/voronoi_cocone.h>
 #include <pcl/cocone/voronoi_decimation.h>
 #include <pcl/console/print.h>
 
