@@ -116,7 +116,7 @@ runCocone(const Input& input, bool quality, Measurement& m)
     m.error = reconstruction.getErrorMessage();
     return;
   }
-  const ReconstructionReport& report = reconstruction.getReport();
+  const ReconstructionStatistics& report = reconstruction.getReport();
   m.values["t_boundary"] = report.timings.boundary;
   m.values["t_candidates"] = report.timings.candidates;
   m.values["t_pruning"] = report.timings.pruning;

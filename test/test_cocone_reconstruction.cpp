@@ -20,6 +20,8 @@
 #include <limits>
 #include <random>
 #include <set>
+#include <type_traits>
+#include <utility>
 
 namespace {
 
@@ -238,6 +240,97 @@ TEST(CoconeReconstruction, IndicesIndexTheWholeCloud)
       expectValidSurface(toPoints(*cloud), toTriangles(mesh.polygons), "sphere subset");
   EXPECT_TRUE(topology.isClosed());
   EXPECT_EQ(topology.vertices, sphere.points.size());
+}
+
+// Every index the class hands out is a cloud index, whatever the core's internal order
+// (the samples are sorted along a Z-order curve): polygons, boundary loops, unused
+// points and boundary flags all name points of the input cloud, on an open surface
+// whose cloud is shuffled, holds NaN points and is reconstructed through a subset. The
+// statistics (getReport()) hold no index at all.
+TEST(CoconeReconstruction, EveryIndexHandedOutIsACloudIndex)
+{
+  static_assert(std::is_same_v<decltype(std::declval<pcl::CoconeReconstruction<
+                                            pcl::PointXYZ>>()
+                                            .getReport()),
+                               const pcl::cocone::ReconstructionStatistics&>,
+                "getReport() hands out counts and timings only");
+  const SampledShape hemisphere = sampleHemisphere(3000, 6);
+  const SampledShape sphere = sampleSphere(500, 6);
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud = toCloud(sphere.points);
+  const std::size_t first_hemisphere = cloud->size();
+  *cloud += *toCloud(hemisphere.points);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (int k = 0; k < 5; ++k)
+    cloud->push_back(pcl::PointXYZ(nan, nan, nan));
+  cloud->is_dense = false;
+  std::vector<std::size_t> order;
+  cloud = shuffledCloud(*cloud, 61, order); // order[k]: the old index of point k
+  // The selection: the hemisphere's points and the NaN points, not the sphere's.
+  pcl::IndicesPtr selection(new pcl::Indices);
+  std::set<pcl::index_t> selected, nan_points;
+  for (std::size_t k = 0; k < cloud->size(); ++k)
+    if (order[k] >= first_hemisphere) {
+      selection->push_back(static_cast<pcl::index_t>(k));
+      selected.insert(static_cast<pcl::index_t>(k));
+      if (!std::isfinite((*cloud)[k].x))
+        nan_points.insert(static_cast<pcl::index_t>(k));
+    }
+  ASSERT_EQ(nan_points.size(), 5u);
+
+  pcl::CoconeReconstruction<pcl::PointXYZ> cocone;
+  cocone.setInputCloud(cloud);
+  cocone.setIndices(selection);
+  std::vector<pcl::Vertices> polygons;
+  cocone.reconstruct(polygons);
+  ASSERT_FALSE(polygons.empty()) << cocone.getErrorMessage();
+  const MeshTopology topology = expectValidSurface(toPoints(*cloud), toTriangles(polygons),
+                                                   "shuffled hemisphere subset");
+  EXPECT_EQ(topology.boundary_loops.size(), 1u);
+
+  std::set<pcl::index_t> used;
+  std::set<std::pair<pcl::index_t, pcl::index_t>> directed_edges;
+  for (const pcl::Vertices& polygon : polygons)
+    for (std::size_t k = 0; k < 3; ++k) {
+      EXPECT_TRUE(selected.count(polygon.vertices[k]));
+      used.insert(polygon.vertices[k]);
+      directed_edges.emplace(polygon.vertices[k], polygon.vertices[(k + 1) % 3]);
+    }
+  // The loop runs along boundary edges of the mesh, in cloud indices: each of its
+  // edges is traversed by exactly one triangle, in one direction.
+  ASSERT_EQ(cocone.getBoundaryLoops().size(), 1u);
+  const std::vector<pcl::index_t>& loop = cocone.getBoundaryLoops()[0].vertices;
+  EXPECT_GT(loop.size(), 20u);
+  for (std::size_t k = 0; k < loop.size(); ++k) {
+    const pcl::index_t a = loop[k], b = loop[(k + 1) % loop.size()];
+    EXPECT_TRUE(selected.count(a));
+    EXPECT_NE(directed_edges.count({a, b}) + directed_edges.count({b, a}), 0u)
+        << "loop edge " << a << "-" << b << " is no mesh edge";
+    EXPECT_EQ(directed_edges.count({a, b}) + directed_edges.count({b, a}), 1u);
+  }
+  // Unused: exactly the selected points in no triangle, NaN points among them.
+  std::set<pcl::index_t> expected_unused;
+  for (const pcl::index_t i : selected)
+    if (!used.count(i))
+      expected_unused.insert(i);
+  const pcl::Indices& unused = cocone.getUnusedIndices();
+  EXPECT_EQ(std::set<pcl::index_t>(unused.begin(), unused.end()), expected_unused);
+  for (const pcl::index_t i : nan_points)
+    EXPECT_TRUE(expected_unused.count(i));
+  // Boundary flags: one per cloud point, set only on selected finite points, near the
+  // rim (z = 0) of the hemisphere.
+  const std::vector<std::uint8_t>& flags = cocone.getBoundarySamples();
+  ASSERT_EQ(flags.size(), cloud->size());
+  std::size_t flagged = 0;
+  for (std::size_t k = 0; k < flags.size(); ++k) {
+    if (!flags[k])
+      continue;
+    ++flagged;
+    EXPECT_TRUE(selected.count(static_cast<pcl::index_t>(k)) &&
+                !nan_points.count(static_cast<pcl::index_t>(k)));
+    EXPECT_LT((*cloud)[k].z, 4 * hemisphere.spacing()) << "flag far from the rim";
+  }
+  EXPECT_GT(flagged, 10u);
+  EXPECT_EQ(cocone.getReport().distinct_samples, hemisphere.points.size());
 }
 
 // ---------------------------------------------------------------------------------

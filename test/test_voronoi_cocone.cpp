@@ -5,6 +5,7 @@
 #include <pcl/cocone/core/reconstruction.h>
 #include <pcl/cocone/core/voronoi_cocone.h>
 
+#include <support/decimation.h>
 #include <support/shapes.h>
 
 #include <gtest/gtest.h>
@@ -159,11 +160,17 @@ TEST(VoronoiCocone, DuplicatesMapToTheSmallestIndexAndShareValues)
   EXPECT_FALSE(neighbours.empty());
 
   // Decimation gives the duplicates level 0.
+  std::vector<SampleIndex> representative(n);
+  for (std::size_t i = 0; i < n; ++i)
+    representative[i] = voronoi.representative(static_cast<SampleIndex>(i));
   DecimationLevels levels;
-  ASSERT_EQ(voronoi.decimate(0.3, levels), Status::ok) << voronoi.errorMessage();
+  std::string message;
+  ASSERT_EQ(decimateUpTo(std::move(voronoi), 0.3, levels, nullptr, &message),
+            Status::ok)
+      << message;
   ASSERT_EQ(levels.level.size(), n);
   for (std::size_t i = 0; i < n; ++i) {
-    if (voronoi.representative(static_cast<SampleIndex>(i)) != i) {
+    if (representative[i] != i) {
       EXPECT_EQ(levels.level[i], 0.0) << "duplicate " << i;
     }
   }
@@ -544,7 +551,10 @@ TEST(VoronoiCocone, DelaunayQueriesAgreeWithAnIndependentTriangulation)
             << reference.number_of_finite_cells() << " finite cells" << std::endl;
 
   DecimationLevels levels;
-  ASSERT_EQ(voronoi.decimate(0.3, levels), Status::ok) << voronoi.errorMessage();
+  std::string message;
+  ASSERT_EQ(decimateUpTo(std::move(voronoi), 0.3, levels, nullptr, &message),
+            Status::ok)
+      << message;
   voronoi.delaunayNeighbours(0, neighbours);
   EXPECT_TRUE(neighbours.empty());
   voronoi.delaunayTrianglesAmong(all, triangles);
@@ -631,8 +641,11 @@ expectFailure(const Points& points, Status expected, const std::string& label)
   std::cout << "[ measured ] " << label << ": " << pcl::cocone::toString(status) << ": "
             << voronoi.errorMessage() << std::endl;
   DecimationLevels levels;
-  EXPECT_EQ(voronoi.decimate(0.3, levels), Status::not_computed) << label;
-  EXPECT_FALSE(voronoi.errorMessage().empty()) << label;
+  std::string message;
+  EXPECT_EQ(decimateUpTo(std::move(voronoi), 0.3, levels, nullptr, &message),
+            Status::not_computed)
+      << label;
+  EXPECT_FALSE(message.empty()) << label;
 }
 
 TEST(VoronoiCocone, DegenerateInputGivesTheDocumentedStatus)
@@ -685,32 +698,37 @@ expectConsumed(VoronoiCocone& voronoi)
   voronoi.delaunayNeighbours(0, neighbours);
   EXPECT_TRUE(neighbours.empty());
   DecimationLevels levels;
-  EXPECT_EQ(voronoi.decimate(0.3, levels), Status::not_computed);
-  EXPECT_FALSE(voronoi.errorMessage().empty());
+  std::string message;
+  EXPECT_EQ(decimateUpTo(std::move(voronoi), 0.3, levels, nullptr, &message),
+            Status::not_computed);
+  EXPECT_FALSE(message.empty());
 }
 
 TEST(VoronoiCocone, DecimateNeedsAFreshComputation)
 {
   VoronoiCocone voronoi;
   DecimationLevels levels;
-  EXPECT_EQ(voronoi.decimate(0.3, levels), Status::not_computed);
-  EXPECT_FALSE(voronoi.errorMessage().empty());
-  std::cout << "[ measured ] before compute(): " << voronoi.errorMessage() << std::endl;
+  std::string message;
+  EXPECT_EQ(decimateUpTo(std::move(voronoi), 0.3, levels, nullptr, &message),
+            Status::not_computed);
+  EXPECT_FALSE(message.empty());
+  std::cout << "[ measured ] before compute(): " << message << std::endl;
 
   ASSERT_EQ(voronoi.compute(sampleSphere(1000, 2).points), Status::ok);
-  EXPECT_EQ(voronoi.decimate(0, levels), Status::invalid_parameter);
-  EXPECT_EQ(voronoi.decimate(std::numeric_limits<double>::quiet_NaN(), levels),
+  EXPECT_EQ(decimateUpTo(std::move(voronoi), 0, levels), Status::invalid_parameter);
+  EXPECT_EQ(decimateUpTo(std::move(voronoi), std::numeric_limits<double>::quiet_NaN(),
+                         levels),
             Status::invalid_parameter);
-  ASSERT_EQ(voronoi.decimate(0.3, levels), Status::ok) << voronoi.errorMessage();
+  ASSERT_EQ(decimateUpTo(std::move(voronoi), 0.3, levels, nullptr, &message),
+            Status::ok)
+      << message;
   EXPECT_GT(levels.removals, 0u);
   EXPECT_EQ(levels.level.size(), 1000u);
   EXPECT_TRUE(voronoi.markedTriangles().empty()); // consumed
   expectConsumed(voronoi);
-  std::cout << "[ measured ] second decimate(): " << voronoi.errorMessage()
-            << std::endl;
   // A new compute() makes it usable again.
   ASSERT_EQ(voronoi.compute(sampleSphere(1000, 2).points), Status::ok);
-  EXPECT_EQ(voronoi.decimate(0.3, levels), Status::ok);
+  EXPECT_EQ(decimateUpTo(std::move(voronoi), 0.3, levels), Status::ok);
 }
 
 // A cancelled decimate() has consumed the triangulation as much as a finished one: what
@@ -721,15 +739,18 @@ TEST(VoronoiCocone, CancelledDecimationLeavesNoUsableDiagram)
   ASSERT_EQ(voronoi.compute(sampleSphere(6000, 3).points), Status::ok);
   std::size_t calls = 0;
   DecimationLevels levels;
-  EXPECT_EQ(voronoi.decimate(0.3, levels, [&](double) { return ++calls < 2; }),
+  std::string message;
+  EXPECT_EQ(decimateUpTo(
+                std::move(voronoi), 0.3, levels, [&](double) { return ++calls < 2; },
+                &message),
             Status::internal_error);
   EXPECT_EQ(calls, 2u); // asked every 1024 removals: cancelled at the second
   EXPECT_EQ(levels.removals, 2048u);
-  EXPECT_EQ(voronoi.errorMessage(), "cancelled");
+  EXPECT_EQ(message, "cancelled");
   expectConsumed(voronoi);
   // A new compute() makes it usable again.
   ASSERT_EQ(voronoi.compute(sampleSphere(6000, 3).points), Status::ok);
-  EXPECT_EQ(voronoi.decimate(0.3, levels), Status::ok);
+  EXPECT_EQ(decimateUpTo(std::move(voronoi), 0.3, levels), Status::ok);
   EXPECT_GT(levels.removals, 2048u);
 }
 
@@ -745,6 +766,18 @@ TEST(VoronoiCocone, OutOfRangeCoconeAngleIsRefused)
   }
   EXPECT_EQ(voronoi.setCoconeAngle(0.3), Status::ok);
   EXPECT_DOUBLE_EQ(voronoi.getCoconeAngle(), 0.3);
+}
+
+// A cocone angle out of range given to the constructor is refused by compute().
+TEST(VoronoiCocone, OutOfRangeCoconeAngleInTheParametersIsRefusedByCompute)
+{
+  pcl::cocone::VoronoiParameters parameters;
+  parameters.cocone_angle = 2.0;
+  VoronoiCocone voronoi(parameters);
+  EXPECT_EQ(voronoi.compute(sampleSphere(200, 1).points), Status::invalid_parameter);
+  EXPECT_NE(voronoi.errorMessage().find("cocone angle"), std::string::npos)
+      << voronoi.errorMessage();
+  EXPECT_EQ(voronoi.status(), Status::invalid_parameter);
 }
 
 // ---------------------------------------------------------------------------------
@@ -849,8 +882,8 @@ TEST(VoronoiCocone, OneThreadAndAllThreadsGiveIdenticalResults)
   EXPECT_EQ(runs.triangles, 0u);
 
   DecimationLevels levels_single, levels_parallel;
-  ASSERT_EQ(single.decimate(0.4, levels_single), Status::ok);
-  ASSERT_EQ(parallel.decimate(0.4, levels_parallel), Status::ok);
+  ASSERT_EQ(decimateUpTo(std::move(single), 0.4, levels_single), Status::ok);
+  ASSERT_EQ(decimateUpTo(std::move(parallel), 0.4, levels_parallel), Status::ok);
   std::size_t level_differences = 0, kept_differences = 0;
   for (std::size_t i = 0; i < torus.points.size(); ++i) {
     level_differences += !sameValue(levels_single.level[i], levels_parallel.level[i]);

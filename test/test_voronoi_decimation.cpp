@@ -5,6 +5,7 @@
 // topology of the reconstruction after decimation (against VoxelGrid and
 // UniformSampling), and bad input.
 #include <pcl/cocone/core/boundary_samples.h>
+#include <pcl/cocone/core/decimation.h>
 #include <pcl/cocone/cocone_reconstruction.h>
 #include <pcl/cocone/core/mesh_topology.h>
 #include <pcl/cocone/core/voronoi_cocone.h>
@@ -988,9 +989,10 @@ TEST(VoronoiDecimation, RelaxationHoldsRimSamples)
   VoronoiCocone voronoi;
   ASSERT_EQ(voronoi.compute(toPoints(*cloud)), pcl::cocone::Status::ok);
   std::vector<std::uint8_t> flags;
-  ASSERT_GT(pcl::cocone::detectBoundarySamples(
+  ASSERT_EQ(pcl::cocone::detectBoundarySamples(
                 voronoi, pcl::cocone::BoundaryParameters(), flags),
-            0u);
+            pcl::cocone::Status::ok);
+  ASSERT_GT(std::count(flags.begin(), flags.end(), 1), 0);
   const pcl::Indices own = decimate(cloud, 0.3, true, 0);
   const pcl::Indices relaxed = decimate(cloud, 0.3);
   ASSERT_EQ(relaxed.size(), own.size());
@@ -1008,6 +1010,19 @@ TEST(VoronoiDecimation, RelaxationHoldsRimSamples)
   EXPECT_EQ(mesh.topology.genus(), 0);
 }
 
+/** relaxDecimatedSample's count of moves, or the status when it failed. */
+std::size_t
+relaxationMoves(const VoronoiCocone& voronoi, const std::vector<std::uint8_t>& fixed,
+                unsigned iterations, unsigned threads, std::vector<std::uint8_t>& kept,
+                pcl::cocone::Status expected = pcl::cocone::Status::ok)
+{
+  std::size_t moves = 0;
+  EXPECT_EQ(pcl::cocone::relaxDecimatedSample(voronoi, fixed, iterations, threads, kept,
+                                              moves),
+            expected);
+  return moves;
+}
+
 // The core function on its own: the count never changes, fixed samples hold, and
 // mismatched sizes or no rounds change nothing.
 TEST(VoronoiDecimation, RelaxationCoreKeepsCountAndFixedSamples)
@@ -1022,14 +1037,14 @@ TEST(VoronoiDecimation, RelaxationCoreKeepsCountAndFixedSamples)
   const std::vector<std::uint8_t> none(points.size(), 0), all(points.size(), 1);
 
   std::vector<std::uint8_t> moved = kept;
-  EXPECT_GT(pcl::cocone::relaxDecimatedSample(voronoi, none, 5, 0, moved), 0u);
+  EXPECT_GT(relaxationMoves(voronoi, none, 5, 0, moved), 0u);
   EXPECT_EQ(static_cast<std::size_t>(std::count(moved.begin(), moved.end(), 1)), count);
   std::vector<std::uint8_t> one_thread = kept;
-  pcl::cocone::relaxDecimatedSample(voronoi, none, 5, 1, one_thread);
+  relaxationMoves(voronoi, none, 5, 1, one_thread);
   EXPECT_EQ(one_thread, moved) << "depends on the thread count";
 
   std::vector<std::uint8_t> held = kept;
-  EXPECT_EQ(pcl::cocone::relaxDecimatedSample(voronoi, all, 5, 0, held), 0u);
+  EXPECT_EQ(relaxationMoves(voronoi, all, 5, 0, held), 0u);
   EXPECT_EQ(held, kept);
 
   // Some fixed samples among free ones: clusters gain and lose fixed samples as the
@@ -1040,7 +1055,7 @@ TEST(VoronoiDecimation, RelaxationCoreKeepsCountAndFixedSamples)
     for (std::size_t i = 0; i < points.size(); i += fixed_step)
       some[i] = 1;
     std::vector<std::uint8_t> partly = kept;
-    EXPECT_GT(pcl::cocone::relaxDecimatedSample(voronoi, some, 20, 0, partly), 0u);
+    EXPECT_GT(relaxationMoves(voronoi, some, 20, 0, partly), 0u);
     EXPECT_EQ(static_cast<std::size_t>(std::count(partly.begin(), partly.end(), 1)),
               count)
         << "every " << fixed_step << "th sample fixed";
@@ -1049,10 +1064,11 @@ TEST(VoronoiDecimation, RelaxationCoreKeepsCountAndFixedSamples)
         EXPECT_TRUE(partly[i]) << "fixed sample " << i << " left";
   }
   std::vector<std::uint8_t> untouched = kept;
-  EXPECT_EQ(pcl::cocone::relaxDecimatedSample(voronoi, none, 0, 0, untouched), 0u);
+  EXPECT_EQ(relaxationMoves(voronoi, none, 0, 0, untouched), 0u);
   EXPECT_EQ(untouched, kept);
   std::vector<std::uint8_t> short_flags(10, 0);
-  EXPECT_EQ(pcl::cocone::relaxDecimatedSample(voronoi, short_flags, 5, 0, untouched),
+  EXPECT_EQ(relaxationMoves(voronoi, short_flags, 5, 0, untouched,
+                            pcl::cocone::Status::invalid_parameter),
             0u);
   EXPECT_EQ(untouched, kept);
 }

@@ -53,7 +53,7 @@ commandLine()
 bool
 sparseNote(const pcl::CoconeReconstruction<pcl::PointXYZ>& cocone, std::string& note)
 {
-  const pcl::cocone::ReconstructionReport& report = cocone.getReport();
+  const pcl::cocone::ReconstructionStatistics& report = cocone.getReport();
   if (!report.tooSparseForBoundaryDetection())
     return false;
   note = std::to_string(report.distinct_boundary_samples) + " of " +
@@ -106,7 +106,7 @@ reconstruct(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLi
   if (sparseNote(cocone, note))
     pcl::console::print_info("note: %s\n", note.c_str());
   if (cmd.verbose()) {
-    const pcl::cocone::ReconstructionReport& report = cocone.getReport();
+    const pcl::cocone::ReconstructionStatistics& report = cocone.getReport();
     std::size_t boundary_samples = 0;
     for (const std::uint8_t flag : cocone.getBoundarySamples())
       boundary_samples += flag;

@@ -4,6 +4,7 @@
 
 #include "boundary/cocone_links.h"
 #include "common/parallel.h"
+#include "common/status_guard.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -16,14 +17,6 @@
 
 namespace pcl {
 namespace cocone {
-
-bool
-isValid(const BoundaryParameters& parameters)
-{
-  return kRatioBoundRange.contains(parameters.ratio_bound) &&
-         kNormalAngleRange.contains(parameters.normal_angle) &&
-         kBandRingsRange.contains(parameters.band_rings);
-}
 
 using detail::forEachCoconeLink;
 using detail::forEachTriangleNeighbour;
@@ -76,17 +69,13 @@ completeRimRow(const VoronoiCocone& voronoi, std::vector<std::uint8_t>& is_bound
   }
 }
 
-} // namespace
-
-std::size_t
-detectBoundarySamples(const VoronoiCocone& voronoi,
-                      const BoundaryParameters& parameters,
-                      std::vector<std::uint8_t>& is_boundary)
+/** BOUNDARY on a diagram that holds one, with valid parameters. */
+void
+runBoundary(const VoronoiCocone& voronoi, const BoundaryParameters& parameters,
+            std::vector<std::uint8_t>& is_boundary)
 {
   const std::size_t n = voronoi.size();
   is_boundary.assign(n, 0);
-  if (voronoi.status() != Status::ok)
-    return 0;
   const double cos_alpha = std::cos(parameters.normal_angle);
   // Both conditions compare pole *lines*: orientation is ignored.
   const auto agree = [&](SampleIndex p, SampleIndex q) {
@@ -168,12 +157,34 @@ detectBoundarySamples(const VoronoiCocone& voronoi,
     frontier.swap(next);
   }
 
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < n; ++i)
     is_boundary[i] = is_boundary[voronoi.representative(static_cast<SampleIndex>(i))];
-    count += is_boundary[i];
+}
+
+} // namespace
+
+Status
+detectBoundarySamples(const VoronoiCocone& voronoi,
+                      const BoundaryParameters& parameters,
+                      std::vector<std::uint8_t>& is_boundary,
+                      std::string* message)
+{
+  is_boundary.clear();
+  if (voronoi.status() != Status::ok) {
+    detail::setMessage(message, "BOUNDARY needs a diagram: compute() did not succeed");
+    return Status::not_computed;
   }
-  return count;
+  if (!isValid(parameters)) {
+    detail::setMessage(message, "a parameter of BOUNDARY is outside its range");
+    return Status::invalid_parameter;
+  }
+  const Status status = detail::runGuarded("boundary detection", message, [&] {
+    runBoundary(voronoi, parameters, is_boundary);
+    return Status::ok;
+  });
+  if (status != Status::ok)
+    std::vector<std::uint8_t>().swap(is_boundary);
+  return status;
 }
 
 namespace detail {

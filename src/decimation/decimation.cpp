@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // DECIMATE (Dey et al. 2001, section 4) on the triangulation of VoronoiCocone.
-#include "voronoi/cell_clipper.h"
 #include "boundary/cocone_links.h"
-#include "voronoi/delaunay.h"
+#include "common/parallel.h"
+#include "common/status_guard.h"
+#include "voronoi/cell_clipper.h"
+#include "voronoi/voronoi_cocone_impl.h"
 
-#include <pcl/cocone/core/boundary_samples.h>
+#include <pcl/cocone/core/decimation.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -55,8 +57,6 @@ compact(std::vector<SampleIndex>& list, SampleIndex self, const std::vector<std:
   list.erase(std::unique(list.begin(), list.end()), list.end());
 }
 
-} // namespace
-
 // How the diagram is kept up to date. CGAL's Delaunay_triangulation_3::remove costs
 // about 130 us per vertex on surface samples (it triangulates the hole in a fresh
 // auxiliary triangulation, with hash maps), 20 times the rest of a removal step. But
@@ -74,26 +74,14 @@ compact(std::vector<SampleIndex>& list, SampleIndex self, const std::vector<std:
 // first, and a sample is recomputed once per time it is a candidate, not once per
 // neighbour removal.
 Status
-VoronoiCocone::decimate(double rho, DecimationLevels& levels,
-                        const std::function<bool(double)>& progress, bool thin_rims)
+runDecimate(const VoronoiCocone& voronoi, DiagramState& d, double rho,
+            bool thin_rims, const std::vector<std::uint8_t>& flags,
+            DecimationLevels& levels, const ProgressCallback& progress,
+            std::string* message)
 {
-  Impl& d = *impl_;
-  levels = DecimationLevels();
-  if (d.stars.empty() && d.unique_count > 0) {
-    d.message = "the triangulation was already consumed by an earlier decimate()";
-    return Status::not_computed;
-  }
-  if (d.status != Status::ok) {
-    d.message = "decimate() needs a successful compute() first";
-    return Status::not_computed;
-  }
-  if (!(rho > 0) || !std::isfinite(rho)) {
-    d.message = "the ratio bound must be a positive finite number";
-    return Status::invalid_parameter;
-  }
-
   const std::size_t n = d.representative.size();
-  const double sin_theta = std::sin(cocone_angle_);
+  const unsigned threads = voronoi.getNumberOfThreads();
+  const double sin_theta = std::sin(voronoi.getCoconeAngle());
   levels.level.assign(n, std::numeric_limits<double>::infinity());
   levels.largest_ratio_bound = rho;
 
@@ -116,10 +104,9 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
   };
   std::vector<RimFrame> rims;
   if (thin_rims) {
-    std::vector<std::uint8_t>& flags = levels.boundary;
-    if (detectBoundarySamples(*this, BoundaryParameters(), flags) > 0) {
+    if (std::find(flags.begin(), flags.end(), 1) != flags.end()) {
       rims.assign(n, {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()});
-      runInArena(threads_, [&] {
+      runInArena(threads, [&] {
         tbb::parallel_for(
             tbb::blocked_range<std::size_t>(0, n, 256), [&](const auto& range) {
               std::vector<SampleIndex> links;
@@ -128,7 +115,7 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
                 if (!flags[i] || d.representative[i] != i)
                   continue;
                 const TangentGap gap =
-                    widestTangentGap(*this, static_cast<SampleIndex>(i),
+                    widestTangentGap(voronoi, static_cast<SampleIndex>(i),
                                      TangentPlane::fitted, links, scratch);
                 if (gap.angle > kRimGapAngle && gap.angle < 2 * M_PI &&
                     gap.thickness < kRimThickness)
@@ -146,7 +133,7 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
     double sin_theta;
     const Eigen::Vector3d* cut;
   };
-  const double rim_sin_theta = std::sin(cocone_angle_ / 2);
+  const double rim_sin_theta = std::sin(voronoi.getCoconeAngle() / 2);
   const auto frame_of = [&](SampleIndex s) -> CoconeFrame {
     if (!rims.empty() && !rims[s].outward.isZero())
       return {rims[s].axis, rim_sin_theta, &rims[s].outward};
@@ -186,8 +173,8 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
   }
 
   std::vector<std::vector<SampleIndex>> adjacency(n);
-  try {
-    runInArena(threads_, [&] {
+  {
+    runInArena(threads, [&] {
       // Delaunay neighbours of the candidates: only their lists are ever read. A rim
       // sample is measured on its cut cell here.
       tbb::enumerable_thread_specific<SampleMarks> marks;
@@ -215,10 +202,6 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
                           }
                         });
     });
-  }
-  catch (const std::bad_alloc&) {
-    d.message = "out of memory during decimation";
-    return Status::internal_error;
   }
   double smallest = std::numeric_limits<double>::infinity();
   for (const SampleIndex s : candidates) {
@@ -263,7 +246,7 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
   extent = 1e3 * std::max(extent, 1e-300);
   double running_max = 0;
   std::size_t removals = 0;
-  try {
+  {
     while (!queue.empty()) {
       const QueueEntry top = queue.top();
       queue.pop();
@@ -329,23 +312,84 @@ VoronoiCocone::decimate(double rho, DecimationLevels& levels,
 
       if (progress && (removals & 1023u) == 0 && std::isfinite(smallest) && rho > smallest) {
         if (!progress(std::min(1.0, (running_max - smallest) / (rho - smallest)))) {
-          d.message = "cancelled";
+          detail::setMessage(message, "cancelled");
           levels.removals = removals;
           return Status::internal_error;
         }
       }
     }
   }
-  catch (const std::bad_alloc&) {
-    d.message = "out of memory during decimation";
-    return Status::internal_error;
-  }
   levels.removals = removals;
   if (progress)
     progress(1.0);
-  // The triangulation is gone (status() says so since the clearing above).
-  d.message = "the triangulation was consumed by decimate()";
   return Status::ok;
+}
+
+/** The relaxation after DECIMATE at \a rho; the levels follow its output. */
+Status
+relaxLevels(const VoronoiCocone& voronoi, const std::vector<std::uint8_t>& fixed,
+            unsigned iterations, double rho, DecimationLevels& levels,
+            std::string* message)
+{
+  const std::size_t n = voronoi.size();
+  std::vector<std::uint8_t> kept(n, 0);
+  for (std::size_t s = 0; s < n; ++s)
+    kept[s] = levels.level[s] >= rho;
+  const Status status = relaxDecimatedSample(voronoi, fixed, iterations,
+                                             voronoi.getNumberOfThreads(), kept,
+                                             levels.relaxation_moves, message);
+  if (status != Status::ok)
+    return status;
+  // The levels stay true to the output: a sample moved to is kept at rho, one moved
+  // from is removed just below it. Both stay kept at every smaller rho, so the sets
+  // still nest (the smaller ones are DECIMATE's own).
+  for (std::size_t s = 0; s < n; ++s) {
+    if (kept[s] && !(levels.level[s] >= rho))
+      levels.level[s] = rho;
+    else if (!kept[s] && levels.level[s] >= rho)
+      levels.level[s] = std::nextafter(rho, 0.0);
+  }
+  return Status::ok;
+}
+
+} // namespace
+
+Status
+decimate(VoronoiCocone&& voronoi,
+         const DecimationParameters& parameters,
+         const std::vector<std::uint8_t>& boundary,
+         DecimationLevels& levels,
+         const ProgressCallback& progress,
+         std::string* message)
+{
+  levels = DecimationLevels();
+  DiagramState& d = detail::VoronoiCoconeAccess::state(voronoi);
+  if (d.status != Status::ok) {
+    detail::setMessage(message, "decimation needs a diagram: compute() did not succeed "
+                                "(or an earlier decimation consumed it)");
+    return Status::not_computed;
+  }
+  if (!isValid(parameters)) {
+    detail::setMessage(message, "a parameter of the decimation is outside its range");
+    return Status::invalid_parameter;
+  }
+  const bool relaxing = parameters.relaxation_iterations > 0;
+  if ((parameters.thin_rims || relaxing) && boundary.size() != voronoi.size()) {
+    detail::setMessage(message, "the decimation needs BOUNDARY's flag of every sample: " +
+                                    std::to_string(boundary.size()) + " flags for " +
+                                    std::to_string(voronoi.size()) + " samples");
+    return Status::invalid_parameter;
+  }
+  Status status = detail::runGuarded("decimation", message, [&] {
+    return runDecimate(voronoi, d, parameters.ratio_bound, parameters.thin_rims,
+                       boundary, levels, progress, message);
+  });
+  if (status == Status::ok && relaxing)
+    status = relaxLevels(voronoi, boundary, parameters.relaxation_iterations,
+                         parameters.ratio_bound, levels, message);
+  // Consumed, however the run ended: nothing of the diagram applies any more.
+  d = DiagramState();
+  return status;
 }
 
 } // namespace cocone

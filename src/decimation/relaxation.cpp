@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Beyond the paper: evening out a decimated sample at a constant point count.
-#include "voronoi/delaunay.h"
 #include "common/parallel.h"
+#include "common/status_guard.h"
+#include "voronoi/cgal_delaunay.h"
 
-#include <pcl/cocone/core/voronoi_cocone.h>
+#include <pcl/cocone/core/decimation.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -126,8 +127,6 @@ struct SiteGraph
   }
 };
 
-} // namespace
-
 // DECIMATE stops where every kept sample has some long reach (r_p >= rho h_p), so kept
 // samples stay close to each other wherever a gap opened beside them. At the same
 // count, a regular grid covers a surface of nearly constant feature size more evenly
@@ -138,14 +137,11 @@ struct SiteGraph
 // to it), at a covering radius 18% above the free version's on a 6000-point sphere. A
 // round is the Delaunay graph of the generators and a short walk on it per sample.
 std::size_t
-relaxDecimatedSample(const VoronoiCocone& voronoi,
-                     const std::vector<std::uint8_t>& fixed,
-                     unsigned iterations,
-                     unsigned threads,
-                     std::vector<std::uint8_t>& kept)
+relax(const VoronoiCocone& voronoi, const std::vector<std::uint8_t>& fixed,
+      unsigned iterations, unsigned threads, std::vector<std::uint8_t>& kept)
 {
   const std::size_t n = voronoi.size();
-  if (kept.size() != n || fixed.size() != n || iterations == 0)
+  if (iterations == 0)
     return 0;
   const std::vector<Eigen::Vector3d>& points = voronoi.centeredPoints();
   const std::vector<double> share = surfaceShares(voronoi);
@@ -238,6 +234,30 @@ relaxDecimatedSample(const VoronoiCocone& voronoi,
   for (std::size_t k = 0; k < m; ++k)
     kept[answer[k]] = 1;
   return moves;
+}
+
+} // namespace
+
+Status
+relaxDecimatedSample(const VoronoiCocone& voronoi,
+                     const std::vector<std::uint8_t>& fixed,
+                     unsigned iterations,
+                     unsigned threads,
+                     std::vector<std::uint8_t>& kept,
+                     std::size_t& moves,
+                     std::string* message)
+{
+  moves = 0;
+  const std::size_t n = voronoi.size();
+  if (kept.size() != n || fixed.size() != n) {
+    detail::setMessage(message, "the relaxation needs one kept flag and one fixed flag "
+                                "per sample of the diagram");
+    return Status::invalid_parameter;
+  }
+  return detail::runGuarded("the relaxation", message, [&] {
+    moves = relax(voronoi, fixed, iterations, threads, kept);
+    return Status::ok;
+  });
 }
 
 } // namespace cocone

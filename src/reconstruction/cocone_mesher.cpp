@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "common/disjoint_sets.h"
 #include "common/parallel.h"
+#include "common/status_guard.h"
 
+#include <pcl/cocone/core/boundary_samples.h>
 #include <pcl/cocone/core/reconstruction.h>
 #include <pcl/cocone/core/mesh_geometry.h>
 #include <pcl/cocone/parameters.h>
@@ -23,13 +25,6 @@
 
 namespace pcl {
 namespace cocone {
-
-bool
-isValid(const ReconstructionParameters& parameters)
-{
-  return isValid(parameters.boundary) &&
-         kTrueBoundaryRatioRange.contains(parameters.true_boundary_ratio);
-}
 
 namespace {
 
@@ -2170,7 +2165,11 @@ Mesher::run(std::vector<TriangleIndices>& output)
     BoundaryParameters as_published = parameters_.boundary;
     as_published.band_rings = 0;
     as_published.complete_rim_row = false;
-    detectBoundarySamples(voronoi_, as_published, report_.boundary_samples);
+    std::string message;
+    const Status status =
+        detectBoundarySamples(voronoi_, as_published, report_.boundary_samples, &message);
+    if (status != Status::ok)
+      throw detail::StageFailure{status, message};
     // Boundary samples cast no vote: when they are the majority, too few triangles are
     // chosen to cover the surface (Power Crust's 1281-point knot: 98% flagged, 11% of
     // the samples used). Say so, with the way out, rather than return a scrap silently.
@@ -2239,15 +2238,30 @@ Status
 reconstructSurface(const VoronoiCocone& voronoi,
                    const ReconstructionParameters& parameters,
                    std::vector<TriangleIndices>& triangles,
-                   ReconstructionReport& report)
+                   ReconstructionReport& report,
+                   std::string* message)
 {
   triangles.clear();
   report = ReconstructionReport();
-  if (voronoi.status() != Status::ok)
+  if (voronoi.status() != Status::ok) {
+    detail::setMessage(message, "the reconstruction needs a diagram: compute() did not "
+                                "succeed");
     return Status::not_computed;
-  Mesher mesher(voronoi, parameters, report);
-  mesher.run(triangles);
-  return Status::ok;
+  }
+  if (!isValid(parameters)) {
+    detail::setMessage(message, "a parameter of the reconstruction is outside its range");
+    return Status::invalid_parameter;
+  }
+  const Status status = detail::runGuarded("the reconstruction", message, [&] {
+    Mesher mesher(voronoi, parameters, report);
+    mesher.run(triangles);
+    return Status::ok;
+  });
+  if (status != Status::ok) {
+    std::vector<TriangleIndices>().swap(triangles);
+    report = ReconstructionReport();
+  }
+  return status;
 }
 
 } // namespace cocone

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "voronoi/cell_clipper.h"
 
-#include "voronoi/delaunay.h" // clipVoronoiEdge
+#include "voronoi/cocone_edge.h"
 
 #include <Eigen/Geometry>
 

@@ -5,9 +5,8 @@
  */
 #pragma once
 
-#include <pcl/cocone/core/boundary_samples.h>
 #include <pcl/cocone/export.h>
-#include <pcl/cocone/core/voronoi_cocone.h>
+#include <pcl/cocone/parameters.h>
 #include <pcl/features/feature.h>
 #include <pcl/point_types.h>
 
@@ -111,7 +110,7 @@ public:
   double
   getCoconeAngle() const
   {
-    return cocone_angle_;
+    return voronoi_parameters_.cocone_angle;
   }
 
   /** \brief Beyond the paper: also flag \a rings rings of cocone neighbours around the
@@ -155,14 +154,14 @@ public:
   void
   setNumberOfThreads(unsigned threads)
   {
-    threads_ = threads;
+    voronoi_parameters_.threads = threads;
   }
   /** \brief Get the number of threads (see setNumberOfThreads).
    * \return the number of threads; 0 (default) means automatic (every core) */
   unsigned
   getNumberOfThreads() const
   {
-    return threads_;
+    return voronoi_parameters_.threads;
   }
 
   /** \name Per-point results of the last compute()
@@ -255,9 +254,16 @@ private:
   void
   clearResults(std::size_t rows);
 
+  /** computeFeature without its guard against running out of memory. */
+  void
+  estimate(PointCloudOut& output);
+
+  /** Fails the run: the message to getErrorMessage() and PCL_ERROR, empty output. */
+  void
+  fail(const std::string& message, PointCloudOut& output);
+
+  cocone::VoronoiParameters voronoi_parameters_;
   cocone::BoundaryParameters parameters_;
-  double cocone_angle_ = M_PI / 8;
-  unsigned threads_ = 0;
 
   std::vector<std::uint8_t> valid_;
   std::vector<Eigen::Vector3f> pole_vectors_;

@@ -5,11 +5,11 @@
  */
 #pragma once
 
-#include <pcl/cocone/core/reconstruction.h>
 #include <pcl/cocone/export.h>
+#include <pcl/cocone/parameters.h>
+#include <pcl/cocone/reconstruction_statistics.h>
 #include <pcl/surface/reconstruction.h>
 
-#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -49,7 +49,9 @@ namespace pcl {
  * - points with a NaN or infinite coordinate, exact duplicates (the first of them is
  *   used) and isolated outliers end up in no triangle: getUnusedIndices() lists them;
  * - fewer than 4 distinct finite points, or all of them coplanar or collinear, have no
- *   3D Voronoi diagram: reconstruct() reports it with PCL_ERROR and returns no polygon.
+ *   3D Voronoi diagram: reconstruct() reports it with PCL_ERROR and returns no polygon;
+ * - when memory runs out, reconstruct() returns no polygon, getErrorMessage() says so,
+ *   and the diagnostics (boundary samples, loops, unused indices) are empty.
  *
  * \tparam PointInT a point type with x, y, z
  * \ingroup surface
@@ -79,7 +81,7 @@ public:
   double
   getCoconeAngle() const
   {
-    return cocone_angle_;
+    return voronoi_parameters_.cocone_angle;
   }
 
   /** \brief Set rho, BOUNDARY's ratio bound (r_p / h_p <= rho for flat samples).
@@ -165,14 +167,14 @@ public:
   void
   setNumberOfThreads(unsigned threads)
   {
-    threads_ = threads;
+    voronoi_parameters_.threads = threads;
   }
   /** \brief Get the number of threads (see setNumberOfThreads).
    * \return the number of threads; 0 (default) means automatic (every core) */
   unsigned
   getNumberOfThreads() const
   {
-    return threads_;
+    return voronoi_parameters_.threads;
   }
 
   /** \name Diagnostics of the last reconstruct()
@@ -253,10 +255,11 @@ public:
   {
     return error_message_;
   }
-  /** \brief The core's report of the last run.
-   * \return the report; its sample indices are positions among the finite selected
-   *         points (in selection order), not input cloud indices */
-  const cocone::ReconstructionReport&
+  /** \brief What the last run did, stage by stage, in numbers (counts and timings).
+   * The per-point results are getBoundarySamples(), getBoundaryLoops() and
+   * getUnusedIndices(), all in input cloud indices.
+   * \return the statistics; all 0 after a run without a Voronoi diagram */
+  const cocone::ReconstructionStatistics&
   getReport() const
   {
     return report_;
@@ -289,11 +292,19 @@ protected:
   performReconstruction(std::vector<pcl::Vertices>& polygons) override;
 
 private:
-  cocone::ReconstructionParameters parameters_;
-  double cocone_angle_ = M_PI / 8;
-  unsigned threads_ = 0;
+  /** performReconstruction without its guard against running out of memory. */
+  void
+  reconstructSelection(std::vector<pcl::Vertices>& polygons);
 
-  cocone::ReconstructionReport report_;
+  /** Fails the run: the message to getErrorMessage() and PCL_ERROR, every result
+   * empty, every selected index unused. */
+  void
+  fail(const std::string& message);
+
+  cocone::VoronoiParameters voronoi_parameters_;
+  cocone::ReconstructionParameters parameters_;
+
+  cocone::ReconstructionStatistics report_;
   std::vector<std::uint8_t> boundary_samples_;
   std::vector<pcl::Vertices> boundary_loops_;
   pcl::Indices unused_indices_;

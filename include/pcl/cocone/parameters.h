@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 /**
  * \file
- * The valid ranges of the parameters shared by the three classes and the tools, and
- * the one check every setter makes.
+ * The parameters of the three classes, in one shape: every class holds the diagram's
+ * parameters (VoronoiParameters: the cocone angle and the threads) and those of its
+ * algorithm (BoundaryParameters, ReconstructionParameters or DecimationParameters).
+ * The core functions take the same structs. Each value has a documented unit, default
+ * and valid range; setters check it with acceptParameter, whole structs with isValid.
  */
 #pragma once
 
@@ -64,6 +67,127 @@ constexpr ParameterRange kTrueBoundaryRatioRange{0.5, 1000, false, false};
 constexpr ParameterRange kBandRingsRange{0, 64, false, false};
 /** \brief Valid range of the number of relaxation rounds after DECIMATE: [0, 1000]. */
 constexpr ParameterRange kRelaxationIterationsRange{0, 1000, false, false};
+
+/** \brief Parameters of the Voronoi diagram that every class builds first. */
+struct VoronoiParameters
+{
+  /** \brief theta, the cocone angle: the cocone of p is the part of its Voronoi cell
+   * within theta of the plane orthogonal to the pole vector. Radians; default pi/8 (the
+   * paper's value); valid range (0, pi/2) (kCoconeAngleRange). */
+  double cocone_angle = M_PI / 8;
+  /** \brief Worker threads of the per-sample work; 0 (default) lets TBB use every core;
+   * any value is valid. Results do not depend on it. */
+  unsigned threads = 0;
+};
+
+/** \brief Parameters of BOUNDARY. rho and alpha default to the paper's practical
+ * values; of the two extensions beyond the paper, the rim-row completion is on and the
+ * band is off by default. */
+struct BoundaryParameters
+{
+  /** \brief rho: a sample is flat only if r_p / h_p <= rho. Dimensionless; default
+   * 0.99; valid range (0, 10] (kRatioBoundRange). Theory asks for 1.3 epsilon on an
+   * epsilon-sample. */
+  double ratio_bound = 0.99;
+  /** \brief alpha: the largest acute angle between the pole lines of a flat sample and
+   * of the samples whose cocone meets its Voronoi cell. Radians; default pi/6; valid
+   * range (0, pi/2] (kNormalAngleRange). */
+  double normal_angle = M_PI / 6;
+  /** \brief Beyond the paper: grow the boundary flags by this many rings of cocone
+   * neighbours, for users who want a band along the rim rather than its outermost row.
+   * In rings; default 0 (BOUNDARY as published); valid range 0 to 64
+   * (kBandRingsRange). */
+  unsigned band_rings = 0;
+  /** \brief Beyond the paper: complete the outermost row along a rim. BOUNDARY as
+   * published flags 27-54% of that row (a rim sample whose cell is closed off just
+   * beyond the rim by its neighbours' cells passes the ratio test). With this on,
+   * starting from BOUNDARY's flags and walking along cocone neighbours, every sample
+   * whose nearby cocone neighbours leave a gap wider than 2 pi / 3 in its tangent plane
+   * is flagged as well. Grown only from flags, it adds no flag to a shape that has
+   * none. Default true; false gives BOUNDARY as published. Either value is valid. */
+  bool complete_rim_row = true;
+};
+
+/** \brief Parameters of the reconstruction (the cocone angle is the diagram's). */
+struct ReconstructionParameters
+{
+  /** \brief BOUNDARY's parameters (rho, alpha; see BoundaryParameters for units,
+   * defaults and ranges); band_rings and complete_rim_row are ignored here: the samples
+   * that cast no vote are BOUNDARY's as published. */
+  BoundaryParameters boundary;
+  /** \brief Detect boundary samples and let them cast no vote. Default true; false
+   * gives the original COCONE candidate rule (a triangle needs the marks of all its
+   * vertices). Either value is valid. */
+  bool detect_boundary = true;
+  /** \brief Close the holes that are not true boundaries. Default true; either value is
+   * valid. */
+  bool stitch_holes = true;
+  /** \brief A hole is a true boundary, and stays open, when its size (twice its area
+   * over its perimeter: the radius of a round hole, half the width of a long one)
+   * exceeds this many local sample spacings; smaller holes are stitched. The same test
+   * removes candidate triangles that cover such a hole. In local spacings (about 1.1
+   * times sqrt(area / n) on evenly spread samples); default 2; valid range [0.5, 1000]
+   * (kTrueBoundaryRatioRange). */
+  double true_boundary_ratio = 2;
+};
+
+/** \brief Parameters of DECIMATE and what follows it. */
+struct DecimationParameters
+{
+  /** \brief rho: samples with r_p / h_p below it are removed, smallest first.
+   * Dimensionless; default 0.3; valid range (0, 10] (kRatioBoundRange), useful range
+   * 0.25 to 0.4 (the paper removed 56% to 83% of its scans at 0.3). */
+  double ratio_bound = 0.3;
+  /** \brief Beyond the paper: measure each rim sample of an open surface on the side of
+   * its Voronoi cell where the surface is, so that rims are thinned like the rest.
+   * Default true; false gives DECIMATE as published. Either value is valid. */
+  bool thin_rims = true;
+  /** \brief Beyond the paper: rounds of relaxation that even out the kept sample at the
+   * same size; 0 gives DECIMATE's own sample. Default 10; valid range [0, 1000]
+   * (kRelaxationIterationsRange). */
+  unsigned relaxation_iterations = 10;
+};
+
+/** \brief Whether the diagram's parameters lie in their ranges.
+ * \param[in] parameters the values to check
+ * \return true when every value lies in its documented range */
+inline bool
+isValid(const VoronoiParameters& parameters)
+{
+  return kCoconeAngleRange.contains(parameters.cocone_angle);
+}
+
+/** \brief Whether BOUNDARY's parameters lie in their ranges.
+ * \param[in] parameters the values to check
+ * \return true when every value lies in its documented range */
+inline bool
+isValid(const BoundaryParameters& parameters)
+{
+  return kRatioBoundRange.contains(parameters.ratio_bound) &&
+         kNormalAngleRange.contains(parameters.normal_angle) &&
+         kBandRingsRange.contains(parameters.band_rings);
+}
+
+/** \brief Whether the reconstruction's parameters lie in their ranges;
+ * boundary.band_rings is checked too, although the reconstruction ignores it.
+ * \param[in] parameters the values to check
+ * \return true when every value lies in its documented range */
+inline bool
+isValid(const ReconstructionParameters& parameters)
+{
+  return isValid(parameters.boundary) &&
+         kTrueBoundaryRatioRange.contains(parameters.true_boundary_ratio);
+}
+
+/** \brief Whether DECIMATE's parameters lie in their ranges.
+ * \param[in] parameters the values to check
+ * \return true when every value lies in its documented range */
+inline bool
+isValid(const DecimationParameters& parameters)
+{
+  return kRatioBoundRange.contains(parameters.ratio_bound) &&
+         kRelaxationIterationsRange.contains(parameters.relaxation_iterations);
+}
 
 /** \brief Whether \a value may be set; if not, says so with PCL_ERROR, e.g.
  * "[pcl::CoconeReconstruction::setRatioBound] rho = -1 is outside (0, 10]; keeping

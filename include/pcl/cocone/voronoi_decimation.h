@@ -6,9 +6,9 @@
 #pragma once
 
 #include <pcl/cocone/export.h>
+#include <pcl/cocone/parameters.h>
 #include <pcl/filters/filter_indices.h>
 
-#include <cmath>
 #include <string>
 #include <vector>
 
@@ -88,7 +88,7 @@ public:
   double
   getRatioBound() const
   {
-    return ratio_bound_;
+    return parameters_.ratio_bound;
   }
 
   /** \brief Set theta, the cocone angle: the cocone of p is the part of its Voronoi
@@ -102,7 +102,7 @@ public:
   double
   getCoconeAngle() const
   {
-    return cocone_angle_;
+    return voronoi_parameters_.cocone_angle;
   }
 
   /** \brief Beyond the paper: measure each sample on the rim of an open surface
@@ -115,14 +115,14 @@ public:
   void
   setThinRims(bool thin)
   {
-    thin_rims_ = thin;
+    parameters_.thin_rims = thin;
   }
   /** \brief Get whether rims are thinned (see setThinRims).
    * \return true (default) when rim samples are measured on the surface side only */
   bool
   getThinRims() const
   {
-    return thin_rims_;
+    return parameters_.thin_rims;
   }
 
   /** \brief Beyond the paper: rounds of relaxation after DECIMATE in filter() (see the
@@ -138,7 +138,7 @@ public:
   unsigned
   getRelaxationIterations() const
   {
-    return relaxation_iterations_;
+    return parameters_.relaxation_iterations;
   }
 
   /** \brief Number of threads for the per-sample work; 0 (default) uses every core.
@@ -146,14 +146,14 @@ public:
   void
   setNumberOfThreads(unsigned threads)
   {
-    threads_ = threads;
+    voronoi_parameters_.threads = threads;
   }
   /** \brief Get the number of threads (see setNumberOfThreads).
    * \return the number of threads; 0 (default) means automatic (every core) */
   unsigned
   getNumberOfThreads() const
   {
-    return threads_;
+    return voronoi_parameters_.threads;
   }
 
   /** \brief Nested subsets for several ratio bounds from one run (up to the largest).
@@ -178,7 +178,8 @@ public:
    * \return one level per input cloud point (indexed by input cloud index, size of the
    *         input cloud), dimensionless: +infinity for points the run did not remove, 0
    *         for duplicates, NaN for points not selected or not finite, and for every
-   *         point after a run without a Voronoi diagram */
+   *         point after a run without a Voronoi diagram; empty after a run that ran
+   *         out of memory */
   const std::vector<double>&
   getRemovalLevels() const
   {
@@ -210,16 +211,16 @@ protected:
   applyFilter(Indices& indices) override;
 
 private:
-  /** Runs DECIMATE up to rho on the selected points, then the relaxation when \a relax;
-   * fills removal_levels_. */
+  /** Runs DECIMATE on the selected points with \a parameters; fills removal_levels_.
+   * False (with PCL_ERROR and getErrorMessage()) when it fails. */
   bool
-  decimate(double rho, bool relax);
+  decimate(const cocone::DecimationParameters& parameters);
+  /** decimate() without its guard against running out of memory. */
+  bool
+  decimateSelection(const cocone::DecimationParameters& parameters);
 
-  double ratio_bound_ = 0.3;
-  double cocone_angle_ = M_PI / 8;
-  bool thin_rims_ = true;
-  unsigned threads_ = 0;
-  unsigned relaxation_iterations_ = 10;
+  cocone::VoronoiParameters voronoi_parameters_;
+  cocone::DecimationParameters parameters_;
   std::vector<double> removal_levels_;
   std::string error_message_;
 };

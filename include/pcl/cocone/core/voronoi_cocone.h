@@ -1,13 +1,24 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 /**
  * \file
- * The Voronoi/cocone core shared by BoundarySampleEstimation, CoconeReconstruction and
- * VoronoiDecimation. It is compiled once into the library; CGAL stays behind its
- * private implementation, so this header needs only Eigen and the standard library.
+ * Second-level API: the Voronoi/cocone core shared by BoundarySampleEstimation,
+ * CoconeReconstruction and VoronoiDecimation, and by every other front end. Most users
+ * want the three classes (pcl/cocone/boundary_sample_estimation.h,
+ * cocone_reconstruction.h, voronoi_decimation.h); the headers under pcl/cocone/core/ are for
+ * those who work on samples without a PCL cloud, or build on the diagram itself. Every
+ * index here is a sample index (a position in the array given to compute()), never a
+ * cloud index. The core is compiled once into the library; CGAL stays behind its
+ * private implementation, so these headers need only Eigen and the standard library.
+ *
+ * Stages, one header each: the diagram (this header), BOUNDARY (boundary_samples.h),
+ * the reconstruction (reconstruction.h), DECIMATE (decimation.h); mesh checks
+ * (mesh_topology.h, mesh_geometry.h); the outcome of every entry (status.h).
  */
 #pragma once
 
+#include <pcl/cocone/core/status.h>
 #include <pcl/cocone/export.h>
+#include <pcl/cocone/parameters.h>
 
 #include <Eigen/Core>
 
@@ -22,8 +33,12 @@
 
 namespace pcl {
 /** \brief The non-template core of pcl_cocone (Voronoi geometry, BOUNDARY, COCONE
- * meshing, DECIMATE) and its helpers (parameter ranges, file readers, mesh checks). */
+ * meshing, DECIMATE) and its helpers (parameters, mesh checks, file formats). */
 namespace cocone {
+
+namespace detail {
+struct VoronoiCoconeAccess;
+} // namespace detail
 
 /** \brief Index of a sample: its position in the point array given to
  * VoronoiCocone::compute. */
@@ -31,27 +46,6 @@ using SampleIndex = std::uint32_t;
 
 /** \brief Marks "no sample" wherever a SampleIndex is expected. */
 constexpr SampleIndex kNoSample = std::numeric_limits<SampleIndex>::max();
-
-/** \brief Outcome of a core computation. Every failure comes with a one-line message
- * (VoronoiCocone::errorMessage); no exception crosses the core's boundary. */
-enum class Status
-{
-  ok,                   ///< success (for compute(): the diagram was built)
-  not_computed,         ///< no diagram: compute() not run or failed, or decimate() ran
-  too_few_points,       ///< fewer than 4 distinct points
-  non_finite_input,     ///< a coordinate is NaN or infinite
-  degenerate_dimension, ///< all points are coplanar or collinear: there is no 3D cell
-  too_many_points,      ///< 2^32 - 1 points or more: more than a SampleIndex addresses
-  invalid_parameter,    ///< a parameter is outside its documented range
-  internal_error        ///< CGAL failed, memory ran out, or decimate() was cancelled
-};
-
-/** \brief Human-readable name of a status.
- * \param[in] status the status to name
- * \return the enumerator's name, e.g. "degenerate_dimension"; "unknown" for a value
- *         outside the enumeration */
-PCL_COCONE_EXPORT const char*
-toString(Status status);
 
 /** \brief A Delaunay triangle whose dual Voronoi edge meets the cocone of at least one
  * of its vertices.
@@ -77,8 +71,8 @@ struct MarkedTriangle
 /** \brief A read-only view of a contiguous run of indices, usable in a range-based
  * for loop. The index space is the producer's (VoronoiCocone::trianglesAround:
  * positions in VoronoiCocone::markedTriangles()). The view points into the
- * VoronoiCocone: it is valid until the next compute() or decimate(), or the object's
- * destruction. */
+ * VoronoiCocone: it is valid until the next compute(), until decimate() consumes the
+ * object, or until the object's destruction. */
 struct IndexRange
 {
   const std::uint32_t* first = nullptr; ///< the first index; null for an empty default
@@ -113,29 +107,6 @@ struct IndexRange
   }
 };
 
-/** \brief Result of DECIMATE: for every sample, the ratio bound from which on it is
- * removed.
- *
- * For any rho in (0, largest_ratio_bound], sample i is kept by DECIMATE(P, rho)
- * exactly when `level[i] >= rho` (removed for every larger rho). Duplicates get level
- * 0 (never kept). The levels nest: the set kept at a larger rho is a subset of the set
- * kept at a smaller one, and each is what a separate run at that rho returns (the
- * removal order is the same prefix; the neighbour lists a run keeps depend on its rho,
- * see src/decimation.cpp, and the tests find the sets identical). Samples not removed
- * up to largest_ratio_bound get +infinity.
- */
-struct DecimationLevels
-{
-  /** One entry per sample, indexed by SampleIndex (size VoronoiCocone::size());
-   * dimensionless like rho. */
-  std::vector<double> level;
-  double largest_ratio_bound = 0; ///< the rho the run went up to (dimensionless)
-  std::size_t removals = 0;       ///< samples removed (duplicates not counted)
-  /** BOUNDARY's flags (default parameters) per sample, when the run computed them
-   * (thin_rims); empty otherwise. */
-  std::vector<std::uint8_t> boundary;
-};
-
 /** \brief Voronoi cell geometry of a point sample: one 3D Delaunay triangulation, and per
  * sample its poles, pole vector, height, cocone radius and the Delaunay triangles its
  * cocone marks.
@@ -161,7 +132,8 @@ struct DecimationLevels
  *
  * Memory: once the per-sample geometry is computed, the object keeps the triangulation
  * as flat arrays (the samples of each cell, the cells of each sample: 32 bytes per
- * cell) for delaunayNeighbours(), delaunayTrianglesAmong() and decimate(), and frees
+ * cell) for delaunayNeighbours(), delaunayTrianglesAmong() and decimate()
+ * (decimation.h), and frees
  * CGAL's own, which takes about 80 bytes per cell. Surface samples have 5 to 9 cells
  * per point (the benchmark's shapes and scans); samples lying almost exactly on an
  * analytic surface, up to 20.
@@ -171,9 +143,11 @@ struct DecimationLevels
 class PCL_COCONE_EXPORT VoronoiCocone
 {
 public:
-  /** \brief An empty object: status() is Status::not_computed, size() is 0, the cocone
-   * angle pi/8 and the number of threads 0 (automatic). */
-  VoronoiCocone();
+  /** \brief An empty object: status() is Status::not_computed and size() is 0.
+   * \param[in] parameters the cocone angle and the number of threads (defaults: pi/8,
+   *            automatic); compute() refuses an out-of-range cocone angle with
+   *            Status::invalid_parameter */
+  explicit VoronoiCocone(const VoronoiParameters& parameters = VoronoiParameters());
   /** \brief Releases the triangulation. */
   ~VoronoiCocone();
   /** \brief Takes over the triangulation and results of the moved-from object, which
@@ -204,7 +178,8 @@ public:
   double
   getCoconeAngle() const;
 
-  /** \brief Set the number of worker threads of compute() and decimate().
+  /** \brief Set the number of worker threads of compute(), and of decimate() on this
+   * object.
    * \param[in] threads number of threads; 0 (default) lets TBB use every core; any
    *            value is accepted */
   void
@@ -219,7 +194,8 @@ public:
    * \param[in] points the samples (any coordinates, in input units; no NaN or
    *            infinity); the position of a point in this array is its SampleIndex
    * \return Status::ok, or the reason nothing was built (see errorMessage()):
-   *         Status::too_many_points, Status::non_finite_input, Status::too_few_points,
+   *         Status::invalid_parameter (the cocone angle), Status::too_many_points,
+   *         Status::non_finite_input, Status::too_few_points,
    *         Status::degenerate_dimension or Status::internal_error */
   Status
   compute(const std::vector<Eigen::Vector3d>& points);
@@ -238,15 +214,12 @@ public:
 
   /** \brief Whether the diagram can be used.
    * \return Status::ok after a successful compute(); Status::not_computed before any,
-   *         and once decimate() has begun its removals, also when it was then
-   *         cancelled or ran out of memory (it consumes the triangulation: the
-   *         per-sample values of the full sample remain readable, but BOUNDARY and the
-   *         reconstruction refuse to run); otherwise the reason the last compute()
-   *         failed */
+   *         and after decimate() consumed the object (whether it succeeded, failed or
+   *         was cancelled); otherwise the reason the last compute() failed */
   Status
   status() const;
 
-  /** \brief Explanation of the last failure of compute() or decimate().
+  /** \brief Explanation of the last failure of compute().
    * \return one line, e.g. "all points are coplanar: no 3D Voronoi cell to measure";
    *         empty after success */
   const std::string&
@@ -319,8 +292,7 @@ public:
   double
   height(SampleIndex i) const;
 
-  /** \brief Cocone radius r_p of a sample, as computed by compute() (decimate() does
-   * not change it).
+  /** \brief Cocone radius r_p of a sample, as computed by compute().
    * \param[in] i a sample index, < size() (a duplicate reads its representative's)
    * \return the radius in input units, >= 0; +infinity for an unbounded cocone */
   double
@@ -335,15 +307,15 @@ public:
 
   /** \brief The Delaunay triangles marked by the cocone of at least one vertex.
    * \return the marked triangles (vertices are representative sample indices); empty
-   *         before compute() and after decimate() */
+   *         before compute() */
   const std::vector<MarkedTriangle>&
   markedTriangles() const;
 
   /** \brief The marked triangles incident to a sample (marked by it or by another
    * vertex). Duplicates read their representative's.
    * \param[in] i a sample index, < size()
-   * \return indices into markedTriangles() (not sample indices); empty before compute()
-   *         and after decimate() */
+   * \return indices into markedTriangles() (not sample indices); empty before
+   *         compute() */
   IndexRange
   trianglesAround(SampleIndex i) const;
 
@@ -351,7 +323,7 @@ public:
    * C_p, i.e. the other vertices of the triangles that i marks.
    * \param[in] i a sample index, < size() (a duplicate reads its representative's)
    * \param[out] neighbours representative sample indices, sorted, without repeats
-   *             (cleared first); empty after decimate() */
+   *             (cleared first) */
   void
   coconeNeighbours(SampleIndex i, std::vector<SampleIndex>& neighbours) const;
 
@@ -359,7 +331,7 @@ public:
    * from several threads at once.
    * \param[in] i a sample index, < size() (a duplicate reads its representative's)
    * \param[out] neighbours representative sample indices, sorted (cleared first); empty
-   *             before compute() and after decimate() */
+   *             before compute() */
   void
   delaunayNeighbours(SampleIndex i, std::vector<SampleIndex>& neighbours) const;
 
@@ -368,52 +340,19 @@ public:
    *            for their representatives
    * \param[out] triangles the triangles as representative sample indices, ascending
    *             within each triangle, each triangle reported once, sorted (cleared
-   *             first); empty before compute() and after decimate() */
+   *             first); empty before compute() */
   void
   delaunayTrianglesAmong(const std::vector<SampleIndex>& samples,
                          std::vector<std::array<SampleIndex, 3>>& triangles) const;
 
-  /** \brief Runs DECIMATE (paper section 4) up to the ratio bound \a rho.
-   *
-   * Heights and pole vectors stay those of the full sample; cocone radii are measured
-   * again only for the samples whose Voronoi cell a removal changed; the sample with
-   * the smallest ratio goes first (ties by the smaller sample index), and the run stops
-   * when no remaining sample has a ratio below \a rho or only 4 distinct samples are
-   * left. The cells are kept up to date from Delaunay neighbour lists, not from the
-   * triangulation, which is consumed: afterwards only the per-sample values of the full
-   * sample, and \a levels, remain meaningful (markedTriangles() is cleared, the
-   * neighbour queries return nothing, and a second decimate() returns
-   * Status::not_computed).
-   * \param[in] rho the largest ratio bound of interest, dimensionless, finite and > 0
-   *            (the classes limit it to (0, 10])
-   * \param[out] levels per-sample removal levels, indexed by SampleIndex (see
-   *             DecimationLevels); reset first
-   * \param[in] progress optional callback, called with the share done in [0, 1] every
-   *            1024 removals and with 1 at the end; returning false cancels
-   *            (Status::internal_error, errorMessage() "cancelled")
-   * \param[in] thin_rims beyond the paper: a rim sample (flagged by BOUNDARY with
-   *            default parameters, its cocone neighbours leaving a gap wider than
-   *            2 pi / 3 in the plane fitted to them) is measured on its Voronoi cell cut
-   *            by the plane through it across that gap, in a cocone of angle theta / 2
-   *            around the fitted plane, so that open surfaces are thinned up to their
-   *            rims; false: DECIMATE as published, which keeps rims dense
-   * \return Status::ok; Status::not_computed without a successful compute() or after
-   *         an earlier decimate(); Status::invalid_parameter for a bad \a rho;
-   *         Status::internal_error when cancelled or out of memory (see
-   *         errorMessage()) */
-  Status
-  decimate(double rho,
-           DecimationLevels& levels,
-           const std::function<bool(double)>& progress = nullptr,
-           bool thin_rims = true);
-
-  /** \brief Opaque implementation (CGAL lives there). */
-  struct Impl;
-
 private:
+  // The state lives behind the pointer, with CGAL's types in the library only. The
+  // core's own algorithms (decimation, which consumes the diagram) reach it through
+  // detail::VoronoiCoconeAccess, defined under src/.
+  struct Impl;
+  friend struct detail::VoronoiCoconeAccess;
   std::unique_ptr<Impl> impl_;
-  double cocone_angle_;
-  unsigned threads_ = 0;
+  VoronoiParameters parameters_;
 };
 
 /** \brief An order of \a points along a Z-order (Morton) curve over their bounding box.
@@ -437,33 +376,6 @@ private:
  *         more (more than a SampleIndex addresses: compute() refuses them too) */
 PCL_COCONE_EXPORT std::vector<SampleIndex>
 spatialOrder(const std::vector<Eigen::Vector3d>& points, unsigned threads = 0);
-
-/** \brief Beyond the paper: evens out a decimated sample, keeping its size.
- *
- * Lloyd's iteration over the input samples: each kept sample starts a generator; every
- * round, each generator moves to the centroid of the samples nearest to it (weighted by
- * the share of the surface each stands for, its squared cocone radius on the full
- * sample), and the sample of its cluster nearest to it is the one it would keep. The
- * rounds stop when fewer than 1% of those choices change, or after \a iterations. The
- * generators move freely between rounds; only the choices are samples. A generator
- * stays on its kept sample when it, or a sample of its cluster, is \a fixed.
- * Deterministic.
- * \param[in] voronoi the diagram of the full sample, from compute(); decimate() may
- *            have run since (only positions and cocone radii are read)
- * \param[in] fixed per sample (size voronoi.size()): 1 for samples that must not move
- *            and hold the kept sample nearest them (BOUNDARY's flags: rims, sharp
- *            features)
- * \param[in] iterations at most this many rounds (0: nothing changes)
- * \param[in] threads worker threads (0: every core)
- * \param[in,out] kept per sample (size voronoi.size()): 1 for a kept sample; the count
- *            never changes, duplicates are never chosen
- * \return the number of kept samples replaced; 0 also when a size does not match */
-PCL_COCONE_EXPORT std::size_t
-relaxDecimatedSample(const VoronoiCocone& voronoi,
-                     const std::vector<std::uint8_t>& fixed,
-                     unsigned iterations,
-                     unsigned threads,
-                     std::vector<std::uint8_t>& kept);
 
 } // namespace cocone
 } // namespace pcl

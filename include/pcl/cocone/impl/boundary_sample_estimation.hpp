@@ -2,11 +2,14 @@
 #pragma once
 
 #include <pcl/cocone/boundary_sample_estimation.h>
+#include <pcl/cocone/core/boundary_samples.h>
 #include <pcl/cocone/core/cloud_samples.h>
+#include <pcl/cocone/core/voronoi_cocone.h>
 #include <pcl/cocone/parameters.h>
 #include <pcl/console/print.h>
 
 #include <limits>
+#include <new>
 #include <numeric>
 
 namespace pcl {
@@ -34,8 +37,9 @@ void
 BoundarySampleEstimation<PointInT, PointOutT>::setCoconeAngle(double theta)
 {
   if (cocone::acceptParameter(getClassName(), "setCoconeAngle", "theta", theta,
-                              cocone::kCoconeAngleRange, cocone_angle_))
-    cocone_angle_ = theta;
+                              cocone::kCoconeAngleRange,
+                              voronoi_parameters_.cocone_angle))
+    voronoi_parameters_.cocone_angle = theta;
 }
 
 template <typename PointInT, typename PointOutT>
@@ -92,7 +96,32 @@ BoundarySampleEstimation<PointInT, PointOutT>::clearResults(std::size_t rows)
 
 template <typename PointInT, typename PointOutT>
 void
+BoundarySampleEstimation<PointInT, PointOutT>::fail(const std::string& message,
+                                                    PointCloudOut& output)
+{
+  error_message_ = message;
+  PCL_ERROR("[pcl::%s::compute] %s.\n", getClassName().c_str(), error_message_.c_str());
+  output.width = output.height = 0;
+  output.clear();
+  clearResults(0);
+}
+
+template <typename PointInT, typename PointOutT>
+void
 BoundarySampleEstimation<PointInT, PointOutT>::computeFeature(PointCloudOut& output)
+{
+  // The core reports its own failures; what remains is this template's copies.
+  try {
+    estimate(output);
+  }
+  catch (const std::bad_alloc&) {
+    fail("out of memory during boundary detection", output); // allocates nothing
+  }
+}
+
+template <typename PointInT, typename PointOutT>
+void
+BoundarySampleEstimation<PointInT, PointOutT>::estimate(PointCloudOut& output)
 {
   const std::size_t rows = indices_->size();
   clearResults(rows);
@@ -103,24 +132,20 @@ BoundarySampleEstimation<PointInT, PointOutT>::computeFeature(PointCloudOut& out
   std::iota(all.begin(), all.end(), 0);
   std::vector<Eigen::Vector3d> samples;
   pcl::Indices cloud_index;
-  cocone::gatherFiniteSamples(*input_, all, samples, cloud_index, nullptr, threads_);
+  cocone::gatherFiniteSamples(*input_, all, samples, cloud_index, nullptr,
+                              voronoi_parameters_.threads);
   std::vector<cocone::SampleIndex> sample_of(input_->size(), cocone::kNoSample);
   for (std::size_t s = 0; s < cloud_index.size(); ++s)
     sample_of[cloud_index[s]] = static_cast<cocone::SampleIndex>(s);
 
-  cocone::VoronoiCocone voronoi;
-  voronoi.setCoconeAngle(cocone_angle_);
-  voronoi.setNumberOfThreads(threads_);
-  if (voronoi.compute(samples) != cocone::Status::ok) {
-    error_message_ = voronoi.errorMessage();
-    PCL_ERROR("[pcl::%s::compute] %s.\n", getClassName().c_str(), error_message_.c_str());
-    output.width = output.height = 0;
-    output.clear();
-    clearResults(0);
-    return;
-  }
+  cocone::VoronoiCocone voronoi(voronoi_parameters_);
+  if (voronoi.compute(samples) != cocone::Status::ok)
+    return fail(voronoi.errorMessage(), output);
   std::vector<std::uint8_t> is_boundary;
-  cocone::detectBoundarySamples(voronoi, parameters_, is_boundary);
+  std::string message;
+  if (cocone::detectBoundarySamples(voronoi, parameters_, is_boundary, &message) !=
+      cocone::Status::ok)
+    return fail(message, output);
 
   for (std::size_t row = 0; row < rows; ++row) {
     const cocone::SampleIndex s = sample_of[(*indices_)[row]];

@@ -1,10 +1,15 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
-#include <pcl/cocone/core/cloud_samples.h>
 #include <pcl/cocone/cocone_reconstruction.h>
+#include <pcl/cocone/core/cloud_samples.h>
+#include <pcl/cocone/core/reconstruction.h>
+#include <pcl/cocone/core/voronoi_cocone.h>
 #include <pcl/cocone/parameters.h>
 #include <pcl/console/print.h>
+
+#include <algorithm>
+#include <new>
 
 namespace pcl {
 
@@ -13,8 +18,9 @@ void
 CoconeReconstruction<PointInT>::setCoconeAngle(double theta)
 {
   if (cocone::acceptParameter(getClassName(), "setCoconeAngle", "theta", theta,
-                              cocone::kCoconeAngleRange, cocone_angle_))
-    cocone_angle_ = theta;
+                              cocone::kCoconeAngleRange,
+                              voronoi_parameters_.cocone_angle))
+    voronoi_parameters_.cocone_angle = theta;
 }
 
 template <typename PointInT>
@@ -55,11 +61,45 @@ CoconeReconstruction<PointInT>::performReconstruction(pcl::PolygonMesh& output)
 
 template <typename PointInT>
 void
+CoconeReconstruction<PointInT>::fail(const std::string& message)
+{
+  error_message_ = message;
+  PCL_ERROR("[pcl::%s::reconstruct] %s.\n", getClassName().c_str(),
+            error_message_.c_str());
+  report_ = cocone::ReconstructionStatistics();
+  std::fill(boundary_samples_.begin(), boundary_samples_.end(), 0);
+  boundary_loops_.clear();
+  unused_indices_ = *indices_;
+}
+
+template <typename PointInT>
+void
 CoconeReconstruction<PointInT>::performReconstruction(std::vector<pcl::Vertices>& polygons)
+{
+  // The core reports its own failures; what remains is this template's copies.
+  try {
+    reconstructSelection(polygons);
+  }
+  catch (const std::bad_alloc&) {
+    // Nothing that allocates: every result is emptied, not refilled.
+    std::vector<pcl::Vertices>().swap(polygons);
+    report_ = cocone::ReconstructionStatistics();
+    std::vector<std::uint8_t>().swap(boundary_samples_);
+    std::vector<pcl::Vertices>().swap(boundary_loops_);
+    pcl::Indices().swap(unused_indices_);
+    error_message_ = "out of memory during the reconstruction";
+    PCL_ERROR("[pcl::%s::reconstruct] %s.\n", getClassName().c_str(),
+              error_message_.c_str());
+  }
+}
+
+template <typename PointInT>
+void
+CoconeReconstruction<PointInT>::reconstructSelection(std::vector<pcl::Vertices>& polygons)
 {
   polygons.clear();
   error_message_.clear();
-  report_ = cocone::ReconstructionReport();
+  report_ = cocone::ReconstructionStatistics();
   boundary_samples_.assign(input_->size(), 0);
   boundary_loops_.clear();
   unused_indices_.clear();
@@ -67,21 +107,20 @@ CoconeReconstruction<PointInT>::performReconstruction(std::vector<pcl::Vertices>
   std::vector<Eigen::Vector3d> samples;
   pcl::Indices cloud_index;
   cocone::gatherFiniteSamples(*input_, *indices_, samples, cloud_index,
-                              &unused_indices_, threads_);
+                              &unused_indices_, voronoi_parameters_.threads);
 
-  cocone::VoronoiCocone voronoi;
-  voronoi.setCoconeAngle(cocone_angle_);
-  voronoi.setNumberOfThreads(threads_);
-  if (voronoi.compute(samples) != cocone::Status::ok) {
-    error_message_ = voronoi.errorMessage();
-    PCL_ERROR("[pcl::%s::reconstruct] %s.\n", getClassName().c_str(),
-              error_message_.c_str());
-    unused_indices_ = *indices_;
-    return;
-  }
+  cocone::VoronoiCocone voronoi(voronoi_parameters_);
+  if (voronoi.compute(samples) != cocone::Status::ok)
+    return fail(voronoi.errorMessage());
   std::vector<cocone::TriangleIndices> triangles;
-  cocone::reconstructSurface(voronoi, parameters_, triangles, report_);
+  cocone::ReconstructionReport report;
+  std::string message;
+  if (cocone::reconstructSurface(voronoi, parameters_, triangles, report, &message) !=
+      cocone::Status::ok)
+    return fail(message);
 
+  // Every index handed out is a cloud index: sample s is cloud point cloud_index[s].
+  report_ = report;
   polygons.reserve(triangles.size());
   for (const cocone::TriangleIndices& t : triangles) {
     polygons.emplace_back();
@@ -90,15 +129,15 @@ CoconeReconstruction<PointInT>::performReconstruction(std::vector<pcl::Vertices>
       polygons.back().vertices[k] = cloud_index[t[k]];
   }
   for (std::size_t s = 0; s < samples.size(); ++s)
-    boundary_samples_[cloud_index[s]] = report_.boundary_samples[s];
-  for (const std::vector<cocone::SampleIndex>& loop : report_.open_loops) {
+    boundary_samples_[cloud_index[s]] = report.boundary_samples[s];
+  for (const std::vector<cocone::SampleIndex>& loop : report.open_loops) {
     pcl::Vertices cycle;
     cycle.vertices.reserve(loop.size());
     for (const cocone::SampleIndex s : loop)
       cycle.vertices.push_back(cloud_index[s]);
     boundary_loops_.push_back(std::move(cycle));
   }
-  for (const cocone::SampleIndex s : report_.unused_samples)
+  for (const cocone::SampleIndex s : report.unused_samples)
     unused_indices_.push_back(cloud_index[s]);
   std::sort(unused_indices_.begin(), unused_indices_.end());
   PCL_DEBUG("[pcl::%s::reconstruct] %zu triangles, %zu candidates, %zu pruned, %zu "

@@ -3,15 +3,16 @@
 
 #include <pcl/cocone/core/boundary_samples.h>
 #include <pcl/cocone/core/cloud_samples.h>
-#include <pcl/cocone/parameters.h>
+#include <pcl/cocone/core/decimation.h>
 #include <pcl/cocone/core/voronoi_cocone.h>
+#include <pcl/cocone/parameters.h>
 #include <pcl/cocone/voronoi_decimation.h>
 #include <pcl/console/print.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
+#include <new>
 
 namespace pcl {
 
@@ -20,8 +21,8 @@ void
 VoronoiDecimation<PointT>::setRatioBound(double rho)
 {
   if (cocone::acceptParameter(getClassName(), "setRatioBound", "rho", rho,
-                              cocone::kRatioBoundRange, ratio_bound_))
-    ratio_bound_ = rho;
+                              cocone::kRatioBoundRange, parameters_.ratio_bound))
+    parameters_.ratio_bound = rho;
 }
 
 template <typename PointT>
@@ -29,8 +30,9 @@ void
 VoronoiDecimation<PointT>::setCoconeAngle(double theta)
 {
   if (cocone::acceptParameter(getClassName(), "setCoconeAngle", "theta", theta,
-                              cocone::kCoconeAngleRange, cocone_angle_))
-    cocone_angle_ = theta;
+                              cocone::kCoconeAngleRange,
+                              voronoi_parameters_.cocone_angle))
+    voronoi_parameters_.cocone_angle = theta;
 }
 
 template <typename PointT>
@@ -39,64 +41,63 @@ VoronoiDecimation<PointT>::setRelaxationIterations(unsigned iterations)
 {
   if (cocone::acceptParameter(getClassName(), "setRelaxationIterations", "iterations",
                               iterations, cocone::kRelaxationIterationsRange,
-                              relaxation_iterations_))
-    relaxation_iterations_ = iterations;
+                              parameters_.relaxation_iterations))
+    parameters_.relaxation_iterations = iterations;
 }
 
 template <typename PointT>
 bool
-VoronoiDecimation<PointT>::decimate(double rho, bool relax)
+VoronoiDecimation<PointT>::decimate(const cocone::DecimationParameters& parameters)
+{
+  // The core reports its own failures; what remains is this template's copies.
+  try {
+    return decimateSelection(parameters);
+  }
+  catch (const std::bad_alloc&) {
+    std::vector<double>().swap(removal_levels_);
+    error_message_ = "out of memory during decimation";
+    PCL_ERROR("[pcl::%s::filter] %s.\n", getClassName().c_str(), error_message_.c_str());
+    return false;
+  }
+}
+
+template <typename PointT>
+bool
+VoronoiDecimation<PointT>::decimateSelection(const cocone::DecimationParameters& parameters)
 {
   removal_levels_.assign(input_->size(), std::numeric_limits<double>::quiet_NaN());
   error_message_.clear();
   std::vector<Eigen::Vector3d> samples;
   pcl::Indices cloud_index;
   cocone::gatherFiniteSamples(*input_, *indices_, samples, cloud_index, nullptr,
-                              threads_);
+                              voronoi_parameters_.threads);
 
-  cocone::VoronoiCocone voronoi;
-  voronoi.setCoconeAngle(cocone_angle_);
-  voronoi.setNumberOfThreads(threads_);
-  cocone::DecimationLevels levels;
-  const bool relaxing = relax && relaxation_iterations_ > 0;
-  // What the relaxation holds: BOUNDARY's flags on the full sample. decimate() computes
-  // them when it thins rims; otherwise they are needed before it changes the diagram.
-  std::vector<std::uint8_t> fixed;
-  const bool ok = voronoi.compute(samples) == cocone::Status::ok;
-  if (ok && relaxing && !thin_rims_)
-    cocone::detectBoundarySamples(voronoi, cocone::BoundaryParameters(), fixed);
-  if (!ok || voronoi.decimate(rho, levels, nullptr, thin_rims_) != cocone::Status::ok) {
-    error_message_ = voronoi.errorMessage();
+  const auto fail = [&](const std::string& message) {
+    error_message_ = message;
     PCL_ERROR("[pcl::%s::filter] %s.\n", getClassName().c_str(), error_message_.c_str());
     return false;
-  }
-  if (relaxing) {
-    if (thin_rims_)
-      fixed = std::move(levels.boundary);
-    std::vector<std::uint8_t> kept(samples.size(), 0);
-    for (std::size_t s = 0; s < samples.size(); ++s)
-      kept[s] = levels.level[s] >= rho;
-    const auto start = std::chrono::steady_clock::now();
-    const std::size_t moves = cocone::relaxDecimatedSample(
-        voronoi, fixed, relaxation_iterations_, threads_, kept);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    // The levels stay true to the output: a sample moved to is kept at rho, one moved
-    // from is removed just below it. Both stay kept at every smaller rho, so the sets
-    // still nest (the smaller ones are DECIMATE's own).
-    for (std::size_t s = 0; s < samples.size(); ++s) {
-      if (kept[s] && !(levels.level[s] >= rho))
-        levels.level[s] = rho;
-      else if (!kept[s] && levels.level[s] >= rho)
-        levels.level[s] = std::nextafter(rho, 0.0);
-    }
-    PCL_DEBUG("[pcl::%s::filter] relaxation: %zu moves, %.3f s.\n",
-              getClassName().c_str(), moves, seconds);
-  }
+  };
+  cocone::VoronoiCocone voronoi(voronoi_parameters_);
+  if (voronoi.compute(samples) != cocone::Status::ok)
+    return fail(voronoi.errorMessage());
+  // BOUNDARY runs here, once, on the full sample: rims are thinned from its flags, and
+  // the relaxation holds them (rims and sharp features).
+  std::vector<std::uint8_t> boundary;
+  std::string message;
+  if ((parameters.thin_rims || parameters.relaxation_iterations > 0) &&
+      cocone::detectBoundarySamples(voronoi, cocone::BoundaryParameters(), boundary,
+                                    &message) != cocone::Status::ok)
+    return fail(message);
+  cocone::DecimationLevels levels;
+  if (cocone::decimate(std::move(voronoi), parameters, boundary, levels, nullptr,
+                       &message) != cocone::Status::ok)
+    return fail(message);
   for (std::size_t s = 0; s < samples.size(); ++s)
     removal_levels_[cloud_index[s]] = levels.level[s];
-  PCL_DEBUG("[pcl::%s::filter] %zu of %zu finite points removed up to rho = %g.\n",
-            getClassName().c_str(), levels.removals, samples.size(), rho);
+  PCL_DEBUG("[pcl::%s::filter] %zu of %zu finite points removed up to rho = %g; the "
+            "relaxation moved %zu.\n",
+            getClassName().c_str(), levels.removals, samples.size(),
+            parameters.ratio_bound, levels.relaxation_moves);
   return true;
 }
 
@@ -106,12 +107,12 @@ VoronoiDecimation<PointT>::applyFilter(Indices& indices)
 {
   indices.clear();
   removed_indices_->clear();
-  if (!decimate(ratio_bound_, true))
+  if (!decimate(parameters_))
     return;
   for (const pcl::index_t i : *indices_) {
     const double level = removal_levels_[i];
     const bool finite = !std::isnan(level);
-    const bool kept = finite && level >= ratio_bound_;
+    const bool kept = finite && level >= parameters_.ratio_bound;
     // Non-finite points are never output, with or without setNegative.
     if (finite && kept != negative_)
       indices.push_back(i);
@@ -130,12 +131,15 @@ VoronoiDecimation<PointT>::computeLevelsOfDetail(const std::vector<double>& rati
     return true;
   for (const double rho : ratio_bounds)
     if (!cocone::acceptParameter(getClassName(), "computeLevelsOfDetail", "rho", rho,
-                                 cocone::kRatioBoundRange, ratio_bound_))
+                                 cocone::kRatioBoundRange, parameters_.ratio_bound))
       return false;
   if (!this->initCompute())
     return false;
-  const bool ok =
-      decimate(*std::max_element(ratio_bounds.begin(), ratio_bounds.end()), false);
+  // DECIMATE's own nested sets: up to the largest rho, without relaxation.
+  cocone::DecimationParameters parameters = parameters_;
+  parameters.ratio_bound = *std::max_element(ratio_bounds.begin(), ratio_bounds.end());
+  parameters.relaxation_iterations = 0;
+  const bool ok = decimate(parameters);
   if (ok) {
     kept.resize(ratio_bounds.size());
     for (std::size_t k = 0; k < ratio_bounds.size(); ++k)

@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+/**
+ * \file
+ * What a reconstruction did, stage by stage, in numbers: the part of the core's report
+ * that CoconeReconstruction hands out as it is (getReport()). It holds no index, so
+ * nothing in it can be mistaken for a cloud index.
+ */
+#pragma once
+
+#include <cstddef>
+
+namespace pcl {
+namespace cocone {
+
+/** \brief The counts and timings of a reconstruction. */
+struct ReconstructionStatistics
+{
+  /** Boundary samples among the distinct samples (duplicates not counted). */
+  std::size_t distinct_boundary_samples = 0;
+  std::size_t distinct_samples = 0; ///< distinct samples (points of the diagram)
+  /** \brief Whether most distinct samples are boundary samples. Those cast no vote, so
+   * the cocones then choose too few triangles to cover the surface: the cloud is too
+   * sparse for boundary detection at this rho (a larger rho, or no detection, fits it
+   * better). The reconstruction warns when this holds.
+   * \return true when more than half of the distinct samples are boundary samples */
+  bool
+  tooSparseForBoundaryDetection() const
+  {
+    return 2 * distinct_boundary_samples > distinct_samples;
+  }
+  std::size_t candidate_triangles = 0; ///< Delaunay triangles chosen by the cocones
+  /** Candidates removed because they covered a true boundary (a hole too small against
+   * the local feature size for BOUNDARY to flag its rim, but too large against the
+   * sample spacing to be a sampling gap). */
+  std::size_t lid_triangles = 0;
+  std::size_t pruned_triangles = 0; ///< candidates removed at sharp edges
+  std::size_t walked_triangles = 0; ///< triangles the walk took
+  /** Walked triangles removed again because a vertex ended with several fans. */
+  std::size_t pinch_removed_triangles = 0;
+  std::size_t stitched_holes = 0;     ///< holes closed by stitching
+  std::size_t stitched_triangles = 0; ///< triangles added to close them
+  /** Samples left out by the extraction and put back by splitting the triangle they
+   * lie over in three, or the edge they lie next to in two (within one local spacing
+   * of the surface there). */
+  std::size_t inserted_samples = 0;
+  /** Triangles removed because they crossed another one (undersampled or noisy parts);
+   * their holes are stitched. */
+  std::size_t crossing_triangles = 0;
+  /** \brief Wall-clock seconds of each stage. */
+  struct Timings
+  {
+    double boundary = 0;   ///< BOUNDARY
+    double candidates = 0; ///< candidates, local spacing and lids
+    double pruning = 0;    ///< pruning at sharp edges
+    double walk = 0;       ///< walk and pinch resolution
+    double stitching = 0;  ///< stitching, sample insertion, crossing removal
+    double finishing = 0;  ///< orientation, loops, unused samples
+  } timings;               ///< wall-clock seconds of each stage
+};
+
+} // namespace cocone
+} // namespace pcl
