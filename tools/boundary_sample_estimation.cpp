@@ -80,6 +80,7 @@ compute(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLine& 
                  }
                  return estimation.getNumberOfBoundarySamples();
                });
+  printWarning(estimation.getWarningMessage());
 
   if (cmd.verbose()) {
     const std::vector<std::uint8_t>& valid = estimation.getValidity();

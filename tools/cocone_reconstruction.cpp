@@ -32,7 +32,8 @@ commandLine()
        "OUTPUT.{ply,vtk,obj}",
        {".ply", ".vtk", ".obj"},
        "the mesh: binary PLY, legacy ASCII VTK or OBJ; vertex i is input point i "
-       "(points with a NaN coordinate are left out and the ids after them renumbered)"},
+       "(points with a NaN coordinate, and points far beyond the cloud's scale, are left "
+       "out and the ids after them renumbered)"},
       {coconeAngleOption(),
        ratioBoundOption(0.99, "BOUNDARY's ratio bound r_p/h_p <= R for flat samples"),
        normalAngleOption(),
@@ -65,7 +66,8 @@ sparseNote(const pcl::CoconeReconstruction<pcl::PointXYZ>& cocone, std::string& 
 }
 
 std::vector<pcl::Vertices>
-reconstruct(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLine& cmd)
+reconstruct(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLine& cmd,
+            pcl::Indices& far_points)
 {
   pcl::CoconeReconstruction<pcl::PointXYZ> cocone;
   cocone.setInputCloud(xyz);
@@ -101,6 +103,8 @@ reconstruct(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLi
                  return polygons.size();
                });
 
+  printWarning(cocone.getWarningMessage());
+  far_points = cocone.getFarIndices();
   // The library's warning is silenced without -v (QuietPcl): repeat it as a note.
   std::string note;
   if (sparseNote(cocone, note))
@@ -135,24 +139,29 @@ reconstruct(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLi
 }
 
 /** The mesh as written: the finite points in input order (a NaN vertex cannot be
- * written to PLY/OBJ meaningfully), the triangles renumbered to match. */
+ * written to PLY/OBJ meaningfully, and a far point left out would make a viewer zoom
+ * out to it), the triangles renumbered to match. */
 struct Mesh
 {
   std::vector<std::array<float, 3>> vertices;
   std::vector<TriangleIndices> triangles;
-  std::size_t dropped = 0;
+  std::size_t non_finite_dropped = 0;
+  std::size_t far_dropped = 0;
 };
 
 Mesh
-finiteMesh(const pcl::PointCloud<pcl::PointXYZ>& xyz,
-           const std::vector<pcl::Vertices>& polygons)
+writtenMesh(const pcl::PointCloud<pcl::PointXYZ>& xyz,
+            const std::vector<pcl::Vertices>& polygons, const pcl::Indices& far_points)
 {
   constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
   Mesh mesh;
+  std::vector<std::uint8_t> far(xyz.size(), 0);
+  for (const pcl::index_t i : far_points)
+    far[static_cast<std::size_t>(i)] = 1;
   std::vector<std::uint32_t> id(xyz.size(), none);
   for (std::size_t i = 0; i < xyz.size(); ++i) {
-    if (!pcl::isXYZFinite(xyz[i])) {
-      ++mesh.dropped;
+    if (!pcl::isXYZFinite(xyz[i]) || far[i]) {
+      ++(far[i] ? mesh.far_dropped : mesh.non_finite_dropped);
       continue;
     }
     id[i] = static_cast<std::uint32_t>(mesh.vertices.size());
@@ -166,7 +175,7 @@ finiteMesh(const pcl::PointCloud<pcl::PointXYZ>& xyz,
     for (int k = 0; k < 3; ++k) {
       const pcl::index_t v = polygon.vertices[k];
       if (v < 0 || static_cast<std::size_t>(v) >= id.size() || id[v] == none)
-        fail("internal error: a triangle uses a point that is not finite");
+        fail("internal error: a triangle uses a point that is not finite or far");
       t[k] = id[v];
     }
     mesh.triangles.push_back(t);
@@ -184,11 +193,17 @@ main(int argc, char** argv)
 
   const pcl::PointCloud<pcl::PointXYZ>::Ptr xyz =
       toXyz(loadCloud(cmd.input(), cmd.verbose()));
-  const Mesh mesh = finiteMesh(*xyz, reconstruct(xyz, cmd));
-  if (mesh.dropped > 0)
+  pcl::Indices far_points;
+  const std::vector<pcl::Vertices> polygons = reconstruct(xyz, cmd, far_points);
+  const Mesh mesh = writtenMesh(*xyz, polygons, far_points);
+  if (mesh.non_finite_dropped > 0)
     pcl::console::print_info("note: %zu non-finite input points dropped; vertex ids "
                              "renumbered\n",
-                             mesh.dropped);
+                             mesh.non_finite_dropped);
+  if (mesh.far_dropped > 0)
+    pcl::console::print_info("note: %zu far input points dropped; vertex ids "
+                             "renumbered\n",
+                             mesh.far_dropped);
   saveMesh(cmd.output(), mesh.vertices, mesh.triangles);
 
   const pcl::cocone::MeshTopology topology =

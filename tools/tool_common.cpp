@@ -566,6 +566,13 @@ printDetail(const std::string& label, const std::string& value)
   print_value("%s\n", value.c_str());
 }
 
+void
+printWarning(const std::string& text)
+{
+  if (!text.empty())
+    pcl::console::print_warn("warning: %s\n", text.c_str());
+}
+
 std::string
 formatNumber(double value, int digits)
 {

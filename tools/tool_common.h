@@ -215,6 +215,11 @@ computeStage(const std::string& what, const std::string& unit, const StageWork& 
 void
 printDetail(const std::string& label, const std::string& value);
 
+/** \brief Prints "warning: <text>\n" (PCL's warning colour) when \a text is not empty:
+ * for the classes' getWarningMessage(), which the tools' quiet PCL output would hide. */
+void
+printWarning(const std::string& text);
+
 /** \brief A number with up to \a digits significant digits, e.g. for parameters. */
 std::string
 formatNumber(double value, int digits = 6);

@@ -75,6 +75,7 @@ decimate(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLine&
                  }
                  return kept.size();
                });
+  printWarning(decimation.getWarningMessage());
   return kept;
 }
 

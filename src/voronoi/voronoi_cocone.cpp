@@ -95,6 +95,35 @@ VoronoiCocone::representative(SampleIndex i) const
   return impl_->representative[i];
 }
 
+double
+VoronoiCocone::typicalSpacing() const
+{
+  const DiagramState& d = *impl_;
+  if (d.stars.empty() || d.unique_count == 0)
+    return 0;
+  constexpr std::size_t kProbes = 1024;
+  const std::size_t n = d.representative.size();
+  const std::size_t stride = std::max<std::size_t>(1, n / kProbes);
+  SampleMarks seen;
+  std::vector<SampleIndex> neighbours;
+  std::vector<double> nearest;
+  for (std::size_t i = 0; i < n; i += stride) {
+    const SampleIndex s = d.representative[i];
+    neighbours.clear();
+    d.stars.appendNeighbours(s, seen, neighbours);
+    double best = std::numeric_limits<double>::infinity();
+    for (const SampleIndex q : neighbours)
+      best = std::min(best, (d.centered[q] - d.centered[s]).squaredNorm());
+    if (std::isfinite(best))
+      nearest.push_back(best);
+  }
+  if (nearest.empty())
+    return 0;
+  const auto middle = nearest.begin() + static_cast<std::ptrdiff_t>(nearest.size() / 2);
+  std::nth_element(nearest.begin(), middle, nearest.end());
+  return std::sqrt(*middle);
+}
+
 const std::vector<Eigen::Vector3d>&
 VoronoiCocone::centeredPoints() const
 {

@@ -40,7 +40,9 @@ namespace pcl {
  *   has one row per index (setIndices) in that order, like every pcl::Feature;
  * - points with a NaN or infinite coordinate are skipped: their row says
  *   boundary_point = 0, isValid() is false, the per-point values are NaN and the
- *   output's is_dense is false;
+ *   output's is_dense is false; so are points far beyond the cloud's own scale
+ *   (getFarIndices(), named by getWarningMessage()), which would change the cells of
+ *   every sample on the convex hull;
  * - exact duplicates share one Voronoi cell and get the flag of the first of them;
  * - fewer than 4 distinct finite points, or all of them coplanar or collinear, have
  *   no 3D Voronoi cell: compute() reports it with PCL_ERROR and returns an empty
@@ -218,6 +220,24 @@ public:
   {
     return error_message_;
   }
+  /** \brief The input points left out of the diagram because they lie far beyond the
+   * cloud's own scale (more than cocone::kFarPointFactor times its median radius from
+   * its median point); their rows are invalid, like those of non-finite points.
+   * \return input cloud indices, ascending */
+  const pcl::Indices&
+  getFarIndices() const
+  {
+    return far_indices_;
+  }
+  /** \brief What the last run warns about, besides its result: far points left out,
+   * coordinates whose float rounding is coarse against the sample spacing (with what to
+   * do about it). The same text went to PCL_WARN.
+   * \return one line; empty when there is nothing to warn about */
+  const std::string&
+  getWarningMessage() const
+  {
+    return warning_message_;
+  }
   /** \brief Number of boundary samples among the output rows.
    * \return the number of rows with boundary_point = 1 (a repeated index counts each
    *         time) */
@@ -271,7 +291,9 @@ private:
   std::vector<float> radii_;
   std::vector<float> ratios_;
   std::size_t boundary_count_ = 0;
+  pcl::Indices far_indices_;
   std::string error_message_;
+  std::string warning_message_;
 };
 
 } // namespace pcl

@@ -48,6 +48,9 @@ namespace pcl {
  *   cloud into the mesh, as every pcl::MeshConstruction does;
  * - points with a NaN or infinite coordinate, exact duplicates (the first of them is
  *   used) and isolated outliers end up in no triangle: getUnusedIndices() lists them;
+ * - points far beyond the cloud's own scale (getFarIndices()) are left out before the
+ *   diagram is built, so that they change nothing else; they are unused too, and
+ *   getWarningMessage() names them;
  * - fewer than 4 distinct finite points, or all of them coplanar or collinear, have no
  *   3D Voronoi diagram: reconstruct() reports it with PCL_ERROR and returns no polygon;
  * - when memory runs out, reconstruct() returns no polygon, getErrorMessage() says so,
@@ -238,8 +241,27 @@ public:
   {
     return boundary_loops_;
   }
+  /** \brief The selected points left out because they lie far beyond the cloud's own
+   * scale (more than cocone::kFarPointFactor times its median radius from its median
+   * point: invalid-point markers such as FLT_MAX, corrupt values). They are among
+   * getUnusedIndices() too, and getWarningMessage() names them.
+   * \return input cloud indices, in selection order */
+  const pcl::Indices&
+  getFarIndices() const
+  {
+    return far_indices_;
+  }
+  /** \brief What the last run warns about, besides its result: far points left out,
+   * coordinates whose float rounding is coarse against the sample spacing (with what to
+   * do about it). The same text went to PCL_WARN.
+   * \return one line; empty when there is nothing to warn about */
+  const std::string&
+  getWarningMessage() const
+  {
+    return warning_message_;
+  }
   /** \brief The selected points that are in no triangle: non-finite points,
-   * duplicates, outliers, samples the extraction left out.
+   * far points, duplicates, outliers, samples the extraction left out.
    * \return input cloud indices (among those selected), ascending; after a run without
    *         a Voronoi diagram, every selected index in selection order */
   const pcl::Indices&
@@ -308,7 +330,9 @@ private:
   std::vector<std::uint8_t> boundary_samples_;
   std::vector<pcl::Vertices> boundary_loops_;
   pcl::Indices unused_indices_;
+  pcl::Indices far_indices_;
   std::string error_message_;
+  std::string warning_message_;
 };
 
 } // namespace pcl

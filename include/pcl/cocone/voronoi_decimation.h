@@ -51,8 +51,9 @@ namespace pcl {
  *
  * Index spaces and special points: indices (setIndices) select the points to decimate;
  * filter(Indices&) returns input cloud indices in the order of the selection. Points
- * with a NaN or infinite coordinate are never returned (in removed indices instead,
- * also with setNegative(true)). Exact duplicates: only the first is kept. Fewer than 4
+ * with a NaN or infinite coordinate, and points far beyond the cloud's own scale
+ * (getFarIndices()), are never returned (in removed indices instead, also with
+ * setNegative(true)). Exact duplicates: only the first is kept. Fewer than 4
  * distinct finite points, or all coplanar or collinear: PCL_ERROR and an empty result.
  *
  * \tparam PointT a point type with x, y, z
@@ -177,13 +178,33 @@ public:
    * moved from a level just below rho; the sets kept at smaller rho still contain it.
    * \return one level per input cloud point (indexed by input cloud index, size of the
    *         input cloud), dimensionless: +infinity for points the run did not remove, 0
-   *         for duplicates, NaN for points not selected or not finite, and for every
+   *         for duplicates, NaN for points not selected, not finite or far (see
+   *         getFarIndices()), and for every
    *         point after a run without a Voronoi diagram; empty after a run that ran
    *         out of memory */
   const std::vector<double>&
   getRemovalLevels() const
   {
     return removal_levels_;
+  }
+
+  /** \brief The selected points left out because they lie far beyond the cloud's own
+   * scale (more than cocone::kFarPointFactor times its median radius from its median
+   * point); they are never kept, like non-finite points.
+   * \return input cloud indices, in selection order */
+  const pcl::Indices&
+  getFarIndices() const
+  {
+    return far_indices_;
+  }
+  /** \brief What the last run warns about, besides its result: far points left out,
+   * coordinates whose float rounding is coarse against the sample spacing (with what to
+   * do about it). The same text went to PCL_WARN.
+   * \return one line; empty when there is nothing to warn about */
+  const std::string&
+  getWarningMessage() const
+  {
+    return warning_message_;
   }
 
   /** \brief Why the last run produced no result. The same text went to PCL_ERROR.
@@ -222,7 +243,9 @@ private:
   cocone::VoronoiParameters voronoi_parameters_;
   cocone::DecimationParameters parameters_;
   std::vector<double> removal_levels_;
+  pcl::Indices far_indices_;
   std::string error_message_;
+  std::string warning_message_;
 };
 
 } // namespace pcl

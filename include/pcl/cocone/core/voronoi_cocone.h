@@ -245,6 +245,13 @@ public:
   SampleIndex
   representative(SampleIndex i) const;
 
+  /** \brief The typical sample spacing: the median distance from a sample to its
+   * nearest other sample (through the Delaunay edges), over up to 1024 distinct samples
+   * spread evenly over the index range. Deterministic.
+   * \return the spacing in input units; 0 before compute() */
+  double
+  typicalSpacing() const;
+
   /** \brief The samples translated to their centroid (the frame CGAL works in).
    * \return one point per sample (indexed by SampleIndex, duplicates included), in
    *         input units: sample i = centeredPoints()[i] + offset() */

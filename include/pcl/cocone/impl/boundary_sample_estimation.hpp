@@ -126,20 +126,26 @@ BoundarySampleEstimation<PointInT, PointOutT>::estimate(PointCloudOut& output)
   const std::size_t rows = indices_->size();
   clearResults(rows);
   error_message_.clear();
+  warning_message_.clear();
 
-  // The diagram of every finite input point; the rows are the indices.
+  // The diagram of every finite input point but the far ones; the rows are the indices.
   pcl::Indices all(input_->size());
   std::iota(all.begin(), all.end(), 0);
-  std::vector<Eigen::Vector3d> samples;
-  pcl::Indices cloud_index;
-  cocone::gatherFiniteSamples(*input_, all, samples, cloud_index, nullptr,
-                              voronoi_parameters_.threads);
+  const cocone::CloudSamples samples =
+      cocone::gatherSamples(*input_, all, voronoi_parameters_.threads);
+  far_indices_ = samples.far;
   std::vector<cocone::SampleIndex> sample_of(input_->size(), cocone::kNoSample);
-  for (std::size_t s = 0; s < cloud_index.size(); ++s)
-    sample_of[cloud_index[s]] = static_cast<cocone::SampleIndex>(s);
+  for (std::size_t s = 0; s < samples.cloud_index.size(); ++s)
+    sample_of[samples.cloud_index[s]] = static_cast<cocone::SampleIndex>(s);
 
   cocone::VoronoiCocone voronoi(voronoi_parameters_);
-  if (voronoi.compute(samples) != cocone::Status::ok)
+  const cocone::Status status = voronoi.compute(samples.points);
+  warning_message_ = cocone::describeSampleProblems(
+      *input_, samples, voronoi.typicalSpacing(), "their rows invalid");
+  if (!warning_message_.empty())
+    PCL_WARN("[pcl::%s::compute] %s.\n", getClassName().c_str(),
+             warning_message_.c_str());
+  if (status != cocone::Status::ok)
     return fail(voronoi.errorMessage(), output);
   std::vector<std::uint8_t> is_boundary;
   std::string message;

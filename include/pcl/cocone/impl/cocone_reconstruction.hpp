@@ -87,6 +87,7 @@ CoconeReconstruction<PointInT>::performReconstruction(std::vector<pcl::Vertices>
     std::vector<std::uint8_t>().swap(boundary_samples_);
     std::vector<pcl::Vertices>().swap(boundary_loops_);
     pcl::Indices().swap(unused_indices_);
+    pcl::Indices().swap(far_indices_);
     error_message_ = "out of memory during the reconstruction";
     PCL_ERROR("[pcl::%s::reconstruct] %s.\n", getClassName().c_str(),
               error_message_.c_str());
@@ -103,14 +104,23 @@ CoconeReconstruction<PointInT>::reconstructSelection(std::vector<pcl::Vertices>&
   boundary_samples_.assign(input_->size(), 0);
   boundary_loops_.clear();
   unused_indices_.clear();
+  warning_message_.clear();
 
-  std::vector<Eigen::Vector3d> samples;
-  pcl::Indices cloud_index;
-  cocone::gatherFiniteSamples(*input_, *indices_, samples, cloud_index,
-                              &unused_indices_, voronoi_parameters_.threads);
+  const cocone::CloudSamples samples =
+      cocone::gatherSamples(*input_, *indices_, voronoi_parameters_.threads);
+  far_indices_ = samples.far;
+  unused_indices_ = samples.non_finite;
+  unused_indices_.insert(unused_indices_.end(), samples.far.begin(), samples.far.end());
+  const pcl::Indices& cloud_index = samples.cloud_index;
 
   cocone::VoronoiCocone voronoi(voronoi_parameters_);
-  if (voronoi.compute(samples) != cocone::Status::ok)
+  const cocone::Status status = voronoi.compute(samples.points);
+  warning_message_ = cocone::describeSampleProblems(
+      *input_, samples, voronoi.typicalSpacing(), "listed as unused");
+  if (!warning_message_.empty())
+    PCL_WARN("[pcl::%s::reconstruct] %s.\n", getClassName().c_str(),
+             warning_message_.c_str());
+  if (status != cocone::Status::ok)
     return fail(voronoi.errorMessage());
   std::vector<cocone::TriangleIndices> triangles;
   cocone::ReconstructionReport report;
@@ -128,7 +138,7 @@ CoconeReconstruction<PointInT>::reconstructSelection(std::vector<pcl::Vertices>&
     for (int k = 0; k < 3; ++k)
       polygons.back().vertices[k] = cloud_index[t[k]];
   }
-  for (std::size_t s = 0; s < samples.size(); ++s)
+  for (std::size_t s = 0; s < cloud_index.size(); ++s)
     boundary_samples_[cloud_index[s]] = report.boundary_samples[s];
   for (const std::vector<cocone::SampleIndex>& loop : report.open_loops) {
     pcl::Vertices cycle;

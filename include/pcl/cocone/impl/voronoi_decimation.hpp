@@ -55,6 +55,7 @@ VoronoiDecimation<PointT>::decimate(const cocone::DecimationParameters& paramete
   }
   catch (const std::bad_alloc&) {
     std::vector<double>().swap(removal_levels_);
+    pcl::Indices().swap(far_indices_);
     error_message_ = "out of memory during decimation";
     PCL_ERROR("[pcl::%s::filter] %s.\n", getClassName().c_str(), error_message_.c_str());
     return false;
@@ -67,10 +68,10 @@ VoronoiDecimation<PointT>::decimateSelection(const cocone::DecimationParameters&
 {
   removal_levels_.assign(input_->size(), std::numeric_limits<double>::quiet_NaN());
   error_message_.clear();
-  std::vector<Eigen::Vector3d> samples;
-  pcl::Indices cloud_index;
-  cocone::gatherFiniteSamples(*input_, *indices_, samples, cloud_index, nullptr,
-                              voronoi_parameters_.threads);
+  warning_message_.clear();
+  const cocone::CloudSamples samples =
+      cocone::gatherSamples(*input_, *indices_, voronoi_parameters_.threads);
+  far_indices_ = samples.far;
 
   const auto fail = [&](const std::string& message) {
     error_message_ = message;
@@ -78,7 +79,12 @@ VoronoiDecimation<PointT>::decimateSelection(const cocone::DecimationParameters&
     return false;
   };
   cocone::VoronoiCocone voronoi(voronoi_parameters_);
-  if (voronoi.compute(samples) != cocone::Status::ok)
+  const cocone::Status status = voronoi.compute(samples.points);
+  warning_message_ = cocone::describeSampleProblems(
+      *input_, samples, voronoi.typicalSpacing(), "never kept");
+  if (!warning_message_.empty())
+    PCL_WARN("[pcl::%s::filter] %s.\n", getClassName().c_str(), warning_message_.c_str());
+  if (status != cocone::Status::ok)
     return fail(voronoi.errorMessage());
   // BOUNDARY runs here, once, on the full sample: rims are thinned from its flags, and
   // the relaxation holds them (rims and sharp features).
@@ -92,11 +98,11 @@ VoronoiDecimation<PointT>::decimateSelection(const cocone::DecimationParameters&
   if (cocone::decimate(std::move(voronoi), parameters, boundary, levels, nullptr,
                        &message) != cocone::Status::ok)
     return fail(message);
-  for (std::size_t s = 0; s < samples.size(); ++s)
-    removal_levels_[cloud_index[s]] = levels.level[s];
+  for (std::size_t s = 0; s < samples.cloud_index.size(); ++s)
+    removal_levels_[samples.cloud_index[s]] = levels.level[s];
   PCL_DEBUG("[pcl::%s::filter] %zu of %zu finite points removed up to rho = %g; the "
             "relaxation moved %zu.\n",
-            getClassName().c_str(), levels.removals, samples.size(),
+            getClassName().c_str(), levels.removals, samples.points.size(),
             parameters.ratio_bound, levels.relaxation_moves);
   return true;
 }
