@@ -527,6 +527,21 @@ TEST_F(Tools, ReconstructionOfTooSparseCloudSaysWhy)
   expectOneLineFailure(run(kReconstruction, {sparse, path("knot600.ply").string()}),
                        "no triangle: 600 of 600 points are boundary samples");
 
+  // Extreme parameter values flag every sample of a well-sampled cloud: the reason
+  // names them, not the cloud.
+  const std::string dense = knotFile(20000);
+  const ToolRun alpha = run(kReconstruction, {dense, path("knot_alpha.ply").string(),
+                                              "-alpha", "0.001"});
+  const std::string alpha_text = alpha.out + alpha.err;
+  EXPECT_NE(alpha_text.find("with -alpha 0.001 (default 0.52"), std::string::npos)
+      << alpha_text;
+  EXPECT_EQ(alpha_text.find("too sparse"), std::string::npos) << alpha_text;
+  const ToolRun rho = run(kReconstruction, {dense, path("knot_rho.ply").string(),
+                                            "-rho", "0.001"});
+  const std::string rho_text = rho.out + rho.err;
+  EXPECT_NE(rho_text.find("with -rho 0.001 (default 0.99)"), std::string::npos)
+      << rho_text;
+
   // Without boundary detection the same cloud gives a closed surface, and no note.
   const ToolRun all =
       run(kReconstruction, {sparse, path("knot600_all.ply").string(), "-no_boundary"});

@@ -58,10 +58,26 @@ sparseNote(const pcl::CoconeReconstruction<pcl::PointXYZ>& cocone, std::string& 
   if (!report.tooSparseForBoundaryDetection())
     return false;
   note = std::to_string(report.distinct_boundary_samples) + " of " +
-         std::to_string(report.distinct_samples) +
-         " points are boundary samples: the cloud is too sparse for boundary detection "
-         "at rho " + formatNumber(cocone.getRatioBound()) +
-         "; try a larger -rho or -no_boundary";
+         std::to_string(report.distinct_samples) + " points are boundary samples";
+  // With values far from the defaults, the parameters rather than the cloud may be the
+  // reason (-alpha 0.001 flags every sample of any cloud): name them.
+  const pcl::CoconeReconstruction<pcl::PointXYZ> defaults;
+  std::string changed;
+  const auto compare = [&](const char* option, double value, double default_value) {
+    if (value != default_value)
+      changed += std::string(changed.empty() ? "" : ", ") + option + " " +
+                 formatNumber(value) + " (default " + formatNumber(default_value) + ")";
+  };
+  compare("-theta", cocone.getCoconeAngle(), defaults.getCoconeAngle());
+  compare("-rho", cocone.getRatioBound(), defaults.getRatioBound());
+  compare("-alpha", cocone.getNormalAngle(), defaults.getNormalAngle());
+  if (changed.empty())
+    note += ": the cloud is too sparse for boundary detection at rho " +
+            formatNumber(cocone.getRatioBound()) + "; try a larger -rho or -no_boundary";
+  else
+    note += " with " + changed +
+            ": these values flag most samples; try the defaults, a larger -rho or "
+            "-no_boundary";
   return true;
 }
 
