@@ -24,6 +24,7 @@
 #include <pybind11/stl.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -274,6 +275,7 @@ public:
   py::array_t<std::int32_t> far_indices;
   std::string warning;
   pcl::cocone::ReconstructionStatistics statistics;
+  double reconstruct_seconds = 0; ///< CoconeReconstruction::reconstruct as a whole
   /** The triangles' own storage (the numpy array views it), for the topology. */
   std::shared_ptr<const std::vector<TriangleIndices>> triangle_storage;
 
@@ -321,7 +323,8 @@ public:
     report["timings"] =
         py::dict("boundary"_a = t.boundary, "candidates"_a = t.candidates,
                  "pruning"_a = t.pruning, "walk"_a = t.walk,
-                 "stitching"_a = t.stitching, "finishing"_a = t.finishing);
+                 "stitching"_a = t.stitching, "finishing"_a = t.finishing,
+                 "reconstruct"_a = reconstruct_seconds);
     report["far_indices"] = far_indices;
     report["warning"] = warning;
     report_ = report;
@@ -355,20 +358,41 @@ private:
   std::optional<py::dict> report_;
 };
 
-/** Tells how sparse the cloud was when most samples were flagged, with the way out
- * (the tool prints the same note); empty otherwise. */
+/** When most samples are boundary samples, says so with the way out, as the tool does:
+ * with theta, rho or alpha away from their defaults those values, not the cloud, may
+ * be the reason (alpha 0.001 flags every sample of any cloud), so they are named.
+ * Empty otherwise. */
 std::string
 sparseNote(const pcl::CoconeReconstruction<pcl::PointXYZ>& cocone)
 {
   const pcl::cocone::ReconstructionStatistics& report = cocone.getReport();
   if (!report.tooSparseForBoundaryDetection())
     return "";
-  char rho[32];
-  std::snprintf(rho, sizeof rho, "%g", cocone.getRatioBound());
-  return std::to_string(report.distinct_boundary_samples) + " of " +
-         std::to_string(report.distinct_samples) +
-         " points are boundary samples: the cloud is too sparse for boundary detection "
-         "at rho " + rho + "; try a larger rho or boundary_detection=False";
+  const auto format = [](double value) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%g", value);
+    return std::string(buffer);
+  };
+  const pcl::CoconeReconstruction<pcl::PointXYZ> defaults;
+  std::string changed;
+  const auto compare = [&](const char* name, double value, double default_value) {
+    if (value != default_value)
+      changed += std::string(changed.empty() ? "" : ", ") + name + "=" +
+                 format(value) + " (default " + format(default_value) + ")";
+  };
+  compare("theta", cocone.getCoconeAngle(), defaults.getCoconeAngle());
+  compare("rho", cocone.getRatioBound(), defaults.getRatioBound());
+  compare("alpha", cocone.getNormalAngle(), defaults.getNormalAngle());
+  std::string note = std::to_string(report.distinct_boundary_samples) + " of " +
+                     std::to_string(report.distinct_samples) +
+                     " points are boundary samples";
+  if (changed.empty())
+    return note + ": the cloud is too sparse for boundary detection at rho " +
+           format(cocone.getRatioBound()) +
+           "; try a larger rho or boundary_detection=False";
+  return note + " with " + changed +
+         ": these values flag most samples; try the defaults, a larger rho or "
+         "boundary_detection=False";
 }
 
 Mesh
@@ -395,11 +419,17 @@ reconstruct(const py::object& points, double theta, double rho, double alpha,
   const py::array array = pointArray(points);
   const PointView view = pointView(array);
   auto triangles = std::make_shared<std::vector<TriangleIndices>>();
+  double seconds = 0;
   {
     py::gil_scoped_release release;
     cocone.setInputCloud(toCloud(view));
     std::vector<pcl::Vertices> polygons;
+    // Timed as the tool times its computing stage, so that the binding's own share of
+    // a call (conversion in, arrays out) can be measured against it.
+    const auto start = std::chrono::steady_clock::now();
     cocone.reconstruct(polygons);
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                  .count();
     triangles->reserve(polygons.size());
     for (const pcl::Vertices& polygon : polygons)
       triangles->push_back({static_cast<std::uint32_t>(polygon.vertices[0]),
@@ -428,6 +458,7 @@ reconstruct(const py::object& points, double theta, double rho, double alpha,
   mesh.boundary_samples = flagArray(cocone.getBoundarySamples());
   mesh.far_indices = indexArray(cocone.getFarIndices());
   mesh.statistics = cocone.getReport();
+  mesh.reconstruct_seconds = seconds;
   mesh.warning = cocone.getWarningMessage();
   const std::string sparse = sparseNote(cocone);
   if (!sparse.empty())
@@ -774,9 +805,10 @@ PYBIND11_MODULE(pcl_cocone, m)
                    "Its arrays are read-only (copy them to edit): the report\n"
                    "describes them as they are.")
       .def_readonly("vertices", &Mesh::vertices,
-                    "(N, 3) array: the input points as given (not copied; an Open3D\n"
-                    "cloud's points as a float64 copy). Row i is vertex i, also for\n"
-                    "points in no triangle (see unused).")
+                    "(N, 3) array: the input points as given, not copied (integers\n"
+                    "as their float64 conversion; an Open3D cloud's points as a\n"
+                    "float64 copy). Row i is vertex i, also for points in no triangle\n"
+                    "(see unused).")
       .def_readonly("triangles", &Mesh::triangles,
                     "(M, 3) int32: oriented triangles as rows of vertices (closed\n"
                     "components face outward).")
@@ -796,7 +828,9 @@ PYBIND11_MODULE(pcl_cocone, m)
           "(candidate_triangles, lid_triangles, pruned_triangles, walked_triangles,\n"
           "stitched_holes, stitched_triangles, ...), the mesh's topology\n"
           "(vertices_used, triangles, boundary_loops, euler_characteristic, closed,\n"
-          "manifold, components, genus), timings (seconds per stage), far_indices\n"
+          "manifold, components, genus), timings (seconds per stage, and\n"
+          "'reconstruct': the class's whole run, Voronoi diagram included, as the\n"
+          "tool times it), far_indices\n"
           "(the far points left out) and warning ('' if none). Built on first use.")
       .def("to_open3d", &Mesh::toOpen3d,
            "The mesh as an open3d.geometry.TriangleMesh. Its vertices are every input\n"

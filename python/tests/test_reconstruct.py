@@ -69,8 +69,11 @@ def test_mesh_parts_and_report(hemisphere_points):
         assert key in report, key
     assert report["boundary_samples"] == mesh.boundary_samples.sum()
     assert report["triangles"] == len(mesh.triangles)
-    assert set(report["timings"]) == {"boundary", "candidates", "pruning", "walk",
-                                      "stitching", "finishing"}
+    timings = report["timings"]
+    assert set(timings) == {"boundary", "candidates", "pruning", "walk", "stitching",
+                            "finishing", "reconstruct"}
+    stages = sum(seconds for stage, seconds in timings.items() if stage != "reconstruct")
+    assert 0 < stages <= timings["reconstruct"]
     assert report["warning"] == "" and len(report["far_indices"]) == 0
     assert mesh.report is report  # built once
     assert "Mesh" in repr(mesh)
@@ -150,4 +153,13 @@ def test_integer_points_are_converted():
     with pytest.warns(RuntimeWarning, match="too sparse for boundary detection"):
         mesh = pcl_cocone.reconstruct(corners * 10)
     assert mesh.vertices.dtype == np.float64
+    assert mesh.report["too_sparse_for_boundary_detection"]
+
+
+def test_extreme_parameters_are_named_as_the_reason(sphere_points):
+    # alpha 0.001 flags every sample of any cloud: the warning blames the value, not
+    # the cloud.
+    with pytest.warns(RuntimeWarning, match=r"alpha=0\.001 \(default 0\.523599\)"):
+        mesh = pcl_cocone.reconstruct(sphere_points, alpha=0.001)
+    assert "too sparse" not in mesh.report["warning"]
     assert mesh.report["too_sparse_for_boundary_detection"]
