@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "common/disjoint_sets.h"
 #include "common/parallel.h"
+#include "reconstruction/box_grid.h"
 
 #include <pcl/cocone/core/reconstruction.h>
 #include <pcl/cocone/core/mesh_geometry.h>
@@ -19,6 +20,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <unordered_map>
 
 namespace pcl {
@@ -34,72 +36,9 @@ isValid(const ReconstructionParameters& parameters)
 namespace {
 
 using Vector = Eigen::Vector3d;
-using Box = std::pair<Vector, Vector>; // low and high corners
-
-// Whether two boxes are strictly separated along some axis. Touching boxes are not
-// apart: the exact tests count touching as meeting.
-bool
-boxesApart(const Box& a, const Box& b)
-{
-  return (a.second.array() < b.first.array()).any() ||
-         (b.second.array() < a.first.array()).any();
-}
-
-// See Mesher::large_.
-constexpr double kMostGridCells = 64;
-
-// Uniform grids of cubes of side `cell` over bounding boxes (Mesher::grid_ and the
-// suspects' grid of Mesher::removeCrossings).
-using CellKey = std::uint64_t;
-
-long
-cellIndex(double x, double cell)
-{
-  return static_cast<long>(std::floor(x / cell));
-}
-
-CellKey
-packCell(long x, long y, long z)
-{
-  return (static_cast<CellKey>(x & 0x1FFFFF) << 42) |
-         (static_cast<CellKey>(y & 0x1FFFFF) << 21) | static_cast<CellKey>(z & 0x1FFFFF);
-}
-
-// The cell that holds p.
-CellKey
-cellKey(const Vector& p, double cell)
-{
-  return packCell(cellIndex(p.x(), cell), cellIndex(p.y(), cell), cellIndex(p.z(), cell));
-}
-
-// Calls f(key) for every cell the box [low, high] meets.
-template <typename F>
-void
-forEachCellOf(const Vector& low, const Vector& high, double cell, F&& f)
-{
-  for (long x = cellIndex(low.x(), cell); x <= cellIndex(high.x(), cell); ++x)
-    for (long y = cellIndex(low.y(), cell); y <= cellIndex(high.y(), cell); ++y)
-      for (long z = cellIndex(low.z(), cell); z <= cellIndex(high.z(), cell); ++z)
-        f(packCell(x, y, z));
-}
-
-// The side of a grid's cells: twice the mean of the \a count edges summing to \a edges
-// (a triangle then spans a few cells).
-double
-cellSide(double edges, std::size_t count)
-{
-  return count > 0 && edges > 0 ? 2 * edges / static_cast<double>(count) : 1;
-}
-
-// The number of cells the box [low, high] meets (a double: it can be huge).
-double
-cellCountOf(const Vector& low, const Vector& high, double cell)
-{
-  double count = 1;
-  for (int axis = 0; axis < 3; ++axis)
-    count *= std::floor(high[axis] / cell) - std::floor(low[axis] / cell) + 1;
-  return count;
-}
+using detail::Box;
+using detail::BoxGrid;
+using detail::boxesApart;
 
 constexpr std::uint32_t kCoconeGroup = 0;
 constexpr std::uint32_t kNoTriangle = std::numeric_limits<std::uint32_t>::max();
@@ -183,8 +122,8 @@ private:
       ++mesh_degree_[v];
       fan_normal_[v] += nt;
     }
-    if (grid_cell_ > 0)
-      gridInsert(t);
+    if (grid_)
+      grid_->insert(t, boundingBox(oriented_[t]));
   }
   /** Takes mesh triangle t out of the mesh; its edges may be open now. */
   void leaveMesh(std::uint32_t t)
@@ -311,9 +250,6 @@ private:
               const std::vector<std::uint32_t>& added);
   void undo(const std::vector<std::uint32_t>& added);
   bool intersectsSurface(const std::vector<std::uint32_t>& added);
-  template <typename F> void forEachCell(const Vector& low, const Vector& high, F&& f) const;
-  double cellCount(const Vector& low, const Vector& high) const;
-  void gridInsert(std::uint32_t t);
   void buildGrid();
   void meshNear(const Vector& low, const Vector& high,
                 std::vector<std::uint32_t>& nearby) const;
@@ -379,14 +315,7 @@ private:
   // first check that added triangles cross nothing (a fill across a hole can meet a
   // part of the surface that is near in space but far along it). Triangles added later
   // are entered as they come; removed ones stay listed and are skipped by state.
-  // A triangle that would span more than kMostGridCells cells (a fill across a wide
-  // hole, or the sparse background of a depth image, where triangles are far longer
-  // than the mean) is kept in large_ instead, and every query looks at it: on PCL's
-  // stereo table scene some 900 of them spanned up to 150 000 cells each.
-  std::unordered_map<CellKey, std::vector<std::uint32_t> > grid_;
-  std::vector<std::uint32_t> large_;
-  std::vector<Box> large_boxes_; // of the triangles of large_, in the same order
-  double grid_cell_ = 0;
+  std::optional<BoxGrid> grid_;
   std::unordered_map<SampleIndex, std::vector<std::uint32_t> > late_; // added since
   std::vector<std::uint32_t> mesh_degree_; // mesh triangles at each sample
   // Sum of the oriented normals (twice the areas) of the mesh triangles at each sample:
@@ -1434,31 +1363,6 @@ Mesher::closes(const std::vector<SampleIndex>& loop,
 // near it: those at the vertices of the added triangles and one ring around them.
 // Stitching fills are not restricted Delaunay triangles, so nothing else keeps them
 // from folding through the surface at sharp or thin parts.
-template <typename F>
-void
-Mesher::forEachCell(const Vector& low, const Vector& high, F&& f) const
-{
-  forEachCellOf(low, high, grid_cell_, std::forward<F>(f));
-}
-
-double
-Mesher::cellCount(const Vector& low, const Vector& high) const
-{
-  return cellCountOf(low, high, grid_cell_);
-}
-
-void
-Mesher::gridInsert(std::uint32_t t)
-{
-  const auto [low, high] = boundingBox(oriented_[t]);
-  if (cellCount(low, high) > kMostGridCells) {
-    large_.push_back(t);
-    large_boxes_.push_back({low, high});
-    return;
-  }
-  forEachCell(low, high, [&](CellKey key) { grid_[key].push_back(t); });
-}
-
 // Mesh triangles whose grid cells meet those of t.
 void
 Mesher::meshNear(const TriangleIndices& t, std::vector<std::uint32_t>& nearby) const
@@ -1471,7 +1375,7 @@ Mesher::meshNear(const TriangleIndices& t, std::vector<std::uint32_t>& nearby) c
 void
 Mesher::buildGrid()
 {
-  if (grid_cell_ > 0)
+  if (grid_)
     return;
   double edges = 0;
   std::size_t count = 0;
@@ -1480,13 +1384,13 @@ Mesher::buildGrid()
       edges += (points_[oriented_[u][0]] - points_[oriented_[u][1]]).norm();
       ++count;
     }
-  grid_cell_ = cellSide(edges, count);
+  grid_.emplace(BoxGrid::cellSideFor(edges, count));
   // Without room for its cells the map rehashes as it grows: a quarter of the time of
   // this pass on PCL's table scene (about one cell for every four triangles there).
-  grid_.reserve(count / 2);
+  grid_->reserve(count / 2);
   for (std::uint32_t u = 0; u < pool_.size(); ++u)
     if (state_[u] == kInMesh)
-      gridInsert(u);
+      grid_->insert(u, boundingBox(oriented_[u]));
 }
 
 // Mesh triangles whose grid cells meet those of the box [low, high], or whose own box
@@ -1497,31 +1401,14 @@ void
 Mesher::meshNear(const Vector& low, const Vector& high,
                  std::vector<std::uint32_t>& nearby) const
 {
-  assert(grid_cell_ > 0);
+  assert(grid_);
   nearby.clear();
-  const Box box{low, high};
-  const auto take_if_near = [&](std::uint32_t u) {
-    if (state_[u] == kInMesh && !boxesApart(boundingBox(oriented_[u]), box))
-      nearby.push_back(u);
-  };
-  if (cellCount(low, high) <= static_cast<double>(grid_.size())) {
-    forEachCell(low, high, [&](CellKey key) {
-      const auto found = grid_.find(key);
-      if (found != grid_.end())
-        for (const std::uint32_t u : found->second)
-          if (state_[u] == kInMesh)
-            nearby.push_back(u);
-    });
-  }
-  else { // a box wider than the occupied grid: visiting its cells would cost more
-    for (const auto& cell : grid_)
-      for (const std::uint32_t u : cell.second)
-        take_if_near(u);
-  }
-  // Every query meets the large ones: their boxes are kept in a flat array.
-  for (std::size_t k = 0; k < large_.size(); ++k)
-    if (!boxesApart(large_boxes_[k], box) && state_[large_[k]] == kInMesh)
-      nearby.push_back(large_[k]);
+  grid_->forEachNear(
+      Box{low, high}, [&](std::uint32_t u) { return boundingBox(oriented_[u]); },
+      [&](std::uint32_t u) {
+        if (state_[u] == kInMesh)
+          nearby.push_back(u);
+      });
   std::sort(nearby.begin(), nearby.end());
   nearby.erase(std::unique(nearby.begin(), nearby.end()), nearby.end());
 }
@@ -1921,8 +1808,7 @@ Mesher::insertUnusedSamples()
     Box splits_box = boundingBox(splits[0]);
     for (const TriangleIndices& split : splits) {
       const Box box = boundingBox(split);
-      splits_box = {splits_box.first.cwiseMin(box.first),
-                    splits_box.second.cwiseMax(box.second)};
+      splits_box = {splits_box.low.cwiseMin(box.low), splits_box.high.cwiseMax(box.high)};
     }
     bool crossing = false;
     for (const std::uint32_t t : nearby) {
@@ -1966,17 +1852,11 @@ Mesher::findCrossingsBySuspectGrid(
   double edges = 0;
   for (const std::uint32_t t : suspects)
     edges += (points_[oriented_[t][0]] - points_[oriented_[t][1]]).norm();
-  const double cell = cellSide(edges, suspects.size());
+  BoxGrid grid(BoxGrid::cellSideFor(edges, suspects.size())); // of suspect positions
   std::vector<Box> boxes(suspects.size());
-  std::unordered_map<CellKey, std::vector<std::uint32_t> > by_cell; // suspect positions
-  std::vector<std::uint32_t> wide; // suspects over more than kMostGridCells cells
   for (std::uint32_t i = 0; i < suspects.size(); ++i) {
     boxes[i] = boundingBox(oriented_[suspects[i]]);
-    if (cellCountOf(boxes[i].first, boxes[i].second, cell) > kMostGridCells)
-      wide.push_back(i);
-    else
-      forEachCellOf(boxes[i].first, boxes[i].second, cell,
-                    [&](CellKey key) { by_cell[key].push_back(i); });
+    grid.insert(i, boxes[i]);
   }
 
   using Pair = std::pair<std::uint32_t, std::uint32_t>; // suspect position, triangle
@@ -1987,26 +1867,12 @@ Mesher::findCrossingsBySuspectGrid(
       if (state_[u] != kInMesh)
         continue;
       const Box box = boundingBox(oriented_[u]);
-      const auto test_in = [&](CellKey key, const std::vector<std::uint32_t>& listed) {
-        for (const std::uint32_t i : listed) {
-          const Vector corner = box.first.cwiseMax(boxes[i].first);
-          if (cellKey(corner, cell) == key && crosses(suspects[i], boxes[i], u, box))
-            pairs.emplace_back(i, u);
-        }
-      };
-      if (cellCountOf(box.first, box.second, cell) <=
-          static_cast<double>(by_cell.size()))
-        forEachCellOf(box.first, box.second, cell, [&](CellKey key) {
-          const auto listed = by_cell.find(key);
-          if (listed != by_cell.end())
-            test_in(key, listed->second);
-        });
-      else // a triangle wider than the suspects' grid
-        for (const auto& [key, listed] : by_cell)
-          test_in(key, listed);
-      for (const std::uint32_t i : wide)
-        if (crosses(suspects[i], boxes[i], u, box))
-          pairs.emplace_back(i, u);
+      grid.forEachOverlapping(
+          box, [&](std::uint32_t i) -> const Box& { return boxes[i]; },
+          [&](std::uint32_t i) {
+            if (crosses(suspects[i], boxes[i], u, box))
+              pairs.emplace_back(i, u);
+          });
     }
   };
   detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
@@ -2063,7 +1929,7 @@ Mesher::removeCrossings()
     return (u > t || !is_suspect[u]) && !boxesApart(u_box, t_box) &&
            trianglesIntersect(points_, oriented_[t], oriented_[u]);
   };
-  if (grid_cell_ > 0) {
+  if (grid_) {
     // The fills built the mesh's grid: each suspect asks it.
     tbb::enumerable_thread_specific<std::vector<std::uint32_t> > scratch;
     const auto findCrossings = [&](const tbb::blocked_range<std::size_t>& range) {
@@ -2071,7 +1937,7 @@ Mesher::removeCrossings()
       for (std::size_t i = range.begin(); i != range.end(); ++i) {
         const std::uint32_t t = suspects[i];
         const Box box = boundingBox(oriented_[t]);
-        meshNear(box.first, box.second, nearby);
+        meshNear(box.low, box.high, nearby);
         for (const std::uint32_t u : nearby)
           if (crosses(t, box, u, boundingBox(oriented_[u])))
             crossing[i].push_back(u);
