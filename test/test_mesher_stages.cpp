@@ -2,14 +2,21 @@
 // The mesher's parts one by one (src/reconstruction/), on small hand-made or generated
 // inputs: the box grid, the least-area fill, and each stage of reconstructSurface.
 #include "reconstruction/box_grid.h"
+#include "reconstruction/least_area_fill.h"
+
+#include <pcl/cocone/core/mesh_geometry.h>
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
+#include <limits>
 #include <random>
+#include <set>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -17,7 +24,26 @@ namespace {
 using pcl::cocone::detail::Box;
 using pcl::cocone::detail::BoxGrid;
 using pcl::cocone::detail::boxesApart;
+using pcl::cocone::detail::fillLoopByLeastArea;
+using pcl::cocone::detail::LeastAreaFillScratch;
+using pcl::cocone::TriangleIndices;
 using Vector = Eigen::Vector3d;
+using Points = std::vector<Vector>;
+
+double
+areaOf(const Points& points, const TriangleIndices& t)
+{
+  return 0.5 * (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).norm();
+}
+
+double
+areaOf(const Points& points, const std::vector<TriangleIndices>& triangles)
+{
+  double area = 0;
+  for (const TriangleIndices& t : triangles)
+    area += areaOf(points, t);
+  return area;
+}
 
 // --- box grid --------------------------------------------------------------------
 
@@ -105,6 +131,203 @@ TEST(BoxGrid, CellSideIsTwiceTheMeanEdge)
   EXPECT_DOUBLE_EQ(BoxGrid::cellSideFor(10, 5), 4);
   EXPECT_DOUBLE_EQ(BoxGrid::cellSideFor(0, 5), 1); // nothing to measure: any side
   EXPECT_DOUBLE_EQ(BoxGrid::cellSideFor(3, 0), 1);
+}
+
+// --- least-area fill -------------------------------------------------------------
+
+const auto kNoEdge = [](std::uint32_t, std::uint32_t) { return false; };
+
+/** Whether the fill continues the surface across the loop: every loop edge a -> b is
+ * run b -> a by exactly one fill triangle. */
+bool
+continuesAcrossLoop(const std::vector<std::uint32_t>& loop,
+                    const std::vector<TriangleIndices>& fill)
+{
+  for (std::size_t k = 0; k < loop.size(); ++k) {
+    const std::uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
+    int runs = 0;
+    for (const TriangleIndices& t : fill)
+      for (int e = 0; e < 3; ++e)
+        runs += t[e] == b && t[(e + 1) % 3] == a;
+    if (runs != 1)
+      return false;
+  }
+  return true;
+}
+
+TEST(LeastAreaFill, PlanarSquareGivesTwoTrianglesOfItsArea)
+{
+  const Points points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const std::vector<std::uint32_t> loop = {0, 1, 2, 3};
+  std::vector<TriangleIndices> fill;
+  std::vector<std::uint32_t> blockers;
+  LeastAreaFillScratch scratch;
+  ASSERT_TRUE(fillLoopByLeastArea(points, loop, kNoEdge, {}, fill, blockers, scratch));
+  EXPECT_EQ(fill.size(), 2u);
+  EXPECT_DOUBLE_EQ(areaOf(points, fill), 1);
+  EXPECT_TRUE(continuesAcrossLoop(loop, fill));
+  EXPECT_TRUE(blockers.empty());
+
+  // Either diagonal will do; forbid the one chosen, and the other one is used.
+  std::set<std::uint32_t> first(fill[0].begin(), fill[0].end());
+  std::set<std::uint32_t> second(fill[1].begin(), fill[1].end());
+  std::vector<std::uint32_t> diagonal;
+  std::set_intersection(first.begin(), first.end(), second.begin(), second.end(),
+                        std::back_inserter(diagonal));
+  ASSERT_EQ(diagonal.size(), 2u);
+  const auto is_that_diagonal = [&](std::uint32_t a, std::uint32_t b) {
+    return std::minmax(a, b) == std::minmax(diagonal[0], diagonal[1]);
+  };
+  ASSERT_TRUE(
+      fillLoopByLeastArea(points, loop, is_that_diagonal, {}, fill, blockers, scratch));
+  ASSERT_EQ(fill.size(), 2u);
+  EXPECT_DOUBLE_EQ(areaOf(points, fill), 1);
+  for (const TriangleIndices& t : fill)
+    EXPECT_FALSE(std::count(t.begin(), t.end(), diagonal[0]) &&
+                 std::count(t.begin(), t.end(), diagonal[1]));
+}
+
+// A chevron (0, 0) (2, 1) (4, 0) (2, 3), reflex at (2, 1): the inner diagonal gives its
+// area, 4; the outer one folds over it, 8.
+TEST(LeastAreaFill, NonConvexLoopUsesItsInnerDiagonal)
+{
+  const Points points = {{0, 0, 0}, {2, 1, 0}, {4, 0, 0}, {2, 3, 0}};
+  const std::vector<std::uint32_t> loop = {0, 1, 2, 3};
+  std::vector<TriangleIndices> fill;
+  std::vector<std::uint32_t> blockers;
+  LeastAreaFillScratch scratch;
+  ASSERT_TRUE(fillLoopByLeastArea(points, loop, kNoEdge, {}, fill, blockers, scratch));
+  EXPECT_DOUBLE_EQ(areaOf(points, fill), 4);
+  EXPECT_TRUE(continuesAcrossLoop(loop, fill));
+  const auto inner_is_edge = [](std::uint32_t a, std::uint32_t b) {
+    return std::minmax(a, b) == std::minmax(1u, 3u);
+  };
+  ASSERT_TRUE(
+      fillLoopByLeastArea(points, loop, inner_is_edge, {}, fill, blockers, scratch));
+  EXPECT_DOUBLE_EQ(areaOf(points, fill), 8);
+
+  const std::vector<std::uint32_t> too_short = {0, 1};
+  EXPECT_FALSE(fillLoopByLeastArea(points, too_short, kNoEdge, {}, fill, blockers,
+                                   scratch));
+  EXPECT_TRUE(fill.empty());
+}
+
+/** The least area over every triangulation of loop[i..k] closed by the chord (i, k)
+ * that uses no edge of \a is_edge: enumerated without memory, as a reference. */
+double
+bruteForceLeastArea(const Points& points, const std::vector<std::uint32_t>& loop,
+                    const std::function<bool(std::uint32_t, std::uint32_t)>& is_edge,
+                    std::size_t i, std::size_t k)
+{
+  if (k == i + 1)
+    return 0;
+  const std::size_t m = loop.size();
+  if (!(i == 0 && k == m - 1) && is_edge(loop[i], loop[k]))
+    return std::numeric_limits<double>::infinity();
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t j = i + 1; j < k; ++j)
+    best = std::min(best, bruteForceLeastArea(points, loop, is_edge, i, j) +
+                              bruteForceLeastArea(points, loop, is_edge, j, k) +
+                              areaOf(points, {loop[j], loop[i], loop[k]}));
+  return best;
+}
+
+TEST(LeastAreaFill, RandomSkewLoopsGetTheLeastArea)
+{
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> jitter(-0.4, 0.4);
+  LeastAreaFillScratch scratch; // reused across loops of different sizes, as the mesher does
+  for (int trial = 0; trial < 40; ++trial) {
+    const std::size_t m = 4 + trial % 6;
+    Points points;
+    std::vector<std::uint32_t> loop;
+    for (std::size_t k = 0; k < m; ++k) {
+      const double angle = 2 * M_PI * static_cast<double>(k) / static_cast<double>(m);
+      points.emplace_back(std::cos(angle) + jitter(random),
+                          std::sin(angle) + jitter(random), jitter(random));
+      loop.push_back(static_cast<std::uint32_t>(m - 1 - k)); // any numbering
+    }
+    std::set<std::pair<std::uint32_t, std::uint32_t>> edges; // a few diagonals taken
+    for (int e = 0; e < trial % 3; ++e) {
+      const auto a = static_cast<std::uint32_t>(random() % m);
+      const auto b = static_cast<std::uint32_t>((a + 2 + random() % (m - 3)) % m);
+      edges.insert(std::minmax(a, b));
+    }
+    const auto is_edge = [&](std::uint32_t a, std::uint32_t b) {
+      return edges.count(std::minmax(a, b)) > 0;
+    };
+    const double expected = bruteForceLeastArea(points, loop, is_edge, 0, m - 1);
+    std::vector<TriangleIndices> fill;
+    std::vector<std::uint32_t> blockers;
+    const bool found =
+        fillLoopByLeastArea(points, loop, is_edge, {}, fill, blockers, scratch);
+    ASSERT_EQ(found, expected < std::numeric_limits<double>::infinity()) << trial;
+    if (!found)
+      continue;
+    EXPECT_EQ(fill.size(), m - 2) << trial;
+    EXPECT_NEAR(areaOf(points, fill), expected, 1e-12) << trial;
+    EXPECT_TRUE(continuesAcrossLoop(loop, fill)) << trial;
+    for (const TriangleIndices& t : fill)
+      for (int e = 0; e < 3; ++e)
+        EXPECT_FALSE(is_edge(t[e], t[(e + 1) % 3])) << trial;
+  }
+}
+
+/** A small triangle through the centroid of triangle \a t, across it; its corners are
+ * appended to \a points. */
+TriangleIndices
+spikeThrough(Points& points, const TriangleIndices& t)
+{
+  const Vector c = (points[t[0]] + points[t[1]] + points[t[2]]) / 3;
+  const Vector n =
+      (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).normalized();
+  const Vector u = (points[t[1]] - points[t[0]]).normalized();
+  const auto first = static_cast<std::uint32_t>(points.size());
+  points.push_back(c - 0.05 * n + 0.02 * u);
+  points.push_back(c - 0.05 * n - 0.02 * u);
+  points.push_back(c + 0.05 * n);
+  return {first, first + 1, first + 2};
+}
+
+// A skew quadrilateral has two fills, one per diagonal. An obstacle through the smaller
+// one gives the other; obstacles through both give none, and name the two.
+TEST(LeastAreaFill, ObstaclesAreAvoidedOrNamed)
+{
+  Points points = {{0, 0, 0}, {1, 0, 0.8}, {1.2, 1.1, 0}, {0, 1, 0.3}};
+  const std::vector<std::uint32_t> loop = {0, 1, 2, 3};
+  // As the fill orients them (loop[j], loop[i], loop[k]).
+  const std::vector<TriangleIndices> by_02 = {{1, 0, 2}, {2, 0, 3}};
+  const std::vector<TriangleIndices> by_13 = {{2, 1, 3}, {1, 0, 3}};
+  const double area_02 = areaOf(points, by_02), area_13 = areaOf(points, by_13);
+  ASSERT_GT(std::abs(area_02 - area_13), 0.01);
+  const auto& smaller = area_02 < area_13 ? by_02 : by_13;
+  const auto& larger = area_02 < area_13 ? by_13 : by_02;
+
+  std::vector<TriangleIndices> fill;
+  std::vector<std::uint32_t> blockers;
+  LeastAreaFillScratch scratch;
+  ASSERT_TRUE(fillLoopByLeastArea(points, loop, kNoEdge, {}, fill, blockers, scratch));
+  EXPECT_DOUBLE_EQ(areaOf(points, fill), areaOf(points, smaller));
+
+  std::vector<TriangleIndices> obstacles = {spikeThrough(points, smaller[0])};
+  const auto far = static_cast<std::uint32_t>(points.size());
+  points.push_back({5, 5, 5});
+  points.push_back({6, 5, 5});
+  points.push_back({5, 6, 5});
+  obstacles.push_back({far, far + 1, far + 2}); // in the way of nothing
+  for (const TriangleIndices& t : larger) // the test's premise
+    ASSERT_FALSE(pcl::cocone::trianglesIntersect(points, t, obstacles[0]));
+  ASSERT_TRUE(pcl::cocone::trianglesIntersect(points, smaller[0], obstacles[0]));
+  ASSERT_TRUE(
+      fillLoopByLeastArea(points, loop, kNoEdge, obstacles, fill, blockers, scratch));
+  EXPECT_DOUBLE_EQ(areaOf(points, fill), areaOf(points, larger));
+  EXPECT_TRUE(blockers.empty()); // found within the rounds
+
+  obstacles.push_back(spikeThrough(points, larger[0]));
+  EXPECT_FALSE(
+      fillLoopByLeastArea(points, loop, kNoEdge, obstacles, fill, blockers, scratch));
+  EXPECT_TRUE(fill.empty());
+  EXPECT_EQ(blockers, (std::vector<std::uint32_t>{0, 2})); // not the far one
 }
 
 } // namespace
