@@ -3,6 +3,7 @@
 // inputs: the box grid, the least-area fill, and each stage of reconstructSurface.
 #include "reconstruction/box_grid.h"
 #include "reconstruction/least_area_fill.h"
+#include "reconstruction/mesh_state.h"
 
 #include <pcl/cocone/core/mesh_geometry.h>
 
@@ -26,6 +27,10 @@ using pcl::cocone::detail::BoxGrid;
 using pcl::cocone::detail::boxesApart;
 using pcl::cocone::detail::fillLoopByLeastArea;
 using pcl::cocone::detail::LeastAreaFillScratch;
+using pcl::cocone::detail::MeshState;
+using pcl::cocone::detail::kCoconeGroup;
+using pcl::cocone::detail::kPolygonGroup;
+using pcl::cocone::SampleIndex;
 using pcl::cocone::TriangleIndices;
 using Vector = Eigen::Vector3d;
 using Points = std::vector<Vector>;
@@ -43,6 +48,138 @@ areaOf(const Points& points, const std::vector<TriangleIndices>& triangles)
   for (const TriangleIndices& t : triangles)
     area += areaOf(points, t);
   return area;
+}
+
+/** The octahedron with vertices +-x (0, 1), +-y (2, 3), +-z (4, 5), and its eight
+ * faces facing outward, or inward. */
+Points
+octahedronPoints()
+{
+  return {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+}
+
+std::vector<TriangleIndices>
+octahedronFaces(bool outward = true)
+{
+  const Points points = octahedronPoints();
+  std::vector<TriangleIndices> faces;
+  for (std::uint32_t x : {0u, 1u})
+    for (std::uint32_t y : {2u, 3u})
+      for (std::uint32_t z : {4u, 5u}) {
+        TriangleIndices face = {x, y, z};
+        const Vector normal =
+            (points[y] - points[x]).cross(points[z] - points[x]);
+        const Vector centre = points[x] + points[y] + points[z];
+        if ((normal.dot(centre) > 0) != outward)
+          std::swap(face[1], face[2]);
+        faces.push_back(face);
+      }
+  return faces;
+}
+
+/** The triangles of \a mesh in the mesh, as oriented there. */
+std::vector<TriangleIndices>
+meshTriangles(const MeshState& mesh)
+{
+  std::vector<TriangleIndices> triangles;
+  for (std::uint32_t t = 0; t < mesh.poolSize(); ++t)
+    if (mesh.inMesh(t))
+      triangles.push_back(mesh.oriented(t));
+  return triangles;
+}
+
+/** Whether \a loop is a cyclic rotation of \a expected. */
+bool
+sameCycle(std::vector<SampleIndex> loop, const std::vector<SampleIndex>& expected)
+{
+  for (std::size_t k = 0; k < loop.size(); ++k) {
+    if (loop == expected)
+      return true;
+    std::rotate(loop.begin(), loop.begin() + 1, loop.end());
+  }
+  return false;
+}
+
+// --- mesh state ------------------------------------------------------------------
+
+TEST(MeshState, EnteringAndLeavingKeepTheCountsAndTheLog)
+{
+  const Points points = octahedronPoints();
+  MeshState mesh(points);
+  for (const TriangleIndices& face : octahedronFaces())
+    mesh.addToPool(face, kCoconeGroup);
+  mesh.closeGroup();
+  mesh.rebuildIncidence();
+  EXPECT_EQ(mesh.groupCount(), 1u);
+  EXPECT_EQ(mesh.groupEnd(kCoconeGroup), 8u);
+  for (std::uint32_t t = 0; t < 8; ++t)
+    mesh.enterMesh(t);
+  for (SampleIndex v = 0; v < 6; ++v) {
+    EXPECT_EQ(mesh.meshDegree(v), 4u);
+    EXPECT_EQ(mesh.countFans(v), 1u);
+  }
+  EXPECT_TRUE(mesh.traceLoops().empty());
+
+  // A face out: its edges open, as a loop that runs against it.
+  mesh.logChanges(true);
+  const TriangleIndices removed = mesh.oriented(0);
+  mesh.leaveMesh(0);
+  for (const SampleIndex v : removed)
+    EXPECT_EQ(mesh.meshDegree(v), 3u);
+  const auto loops = mesh.traceLoops();
+  ASSERT_EQ(loops.size(), 1u);
+  EXPECT_TRUE(sameCycle(loops[0], {removed[2], removed[1], removed[0]}));
+  std::vector<SampleIndex> loop;
+  ASSERT_TRUE(mesh.traceLoopFrom(removed[0], loop));
+  EXPECT_TRUE(sameCycle(loop, loops[0]));
+  // The same face again, added late, closes the hole (and crosses nothing).
+  const std::uint32_t again = mesh.addToPool(removed, kPolygonGroup); // a late triangle
+  mesh.enterMesh(again);
+  EXPECT_TRUE(mesh.closes(loops[0], {again}));
+  EXPECT_TRUE(mesh.traceLoops().empty());
+
+  // Net changes: face 0 left, face 1 left and came back, `again` entered.
+  mesh.leaveMesh(1);
+  mesh.enterMesh(1);
+  EXPECT_TRUE(mesh.hasChanges());
+  const std::vector<Box> changed = mesh.takeNetChangedBoxes();
+  EXPECT_FALSE(mesh.hasChanges());
+  ASSERT_EQ(changed.size(), 2u); // face 0 and its copy: the same box twice
+  const Box expected = mesh.boundingBox(removed);
+  for (const Box& box : changed) {
+    EXPECT_EQ(box.low, expected.low);
+    EXPECT_EQ(box.high, expected.high);
+  }
+}
+
+TEST(MeshState, EdgesSeeLateTrianglesAndFansSplitAtPinches)
+{
+  const Points points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
+  MeshState mesh(points);
+  const std::uint32_t first = mesh.addToPool({0, 1, 2}, kCoconeGroup);
+  mesh.closeGroup();
+  mesh.rebuildIncidence();
+  const std::uint32_t late = mesh.addToPool({0, 3, 4}, kPolygonGroup);
+  EXPECT_TRUE(mesh.hasLateTriangles());
+  std::vector<std::uint32_t> on_edge;
+  mesh.trianglesOnEdge(
+      3, 0, [](std::uint32_t) { return true; }, on_edge);
+  EXPECT_EQ(on_edge, std::vector<std::uint32_t>{late});
+  mesh.forEachOnEdge(0, 4, [&](std::uint32_t t, SampleIndex apex) {
+    EXPECT_EQ(t, late);
+    EXPECT_EQ(apex, 3u);
+  });
+  mesh.enterMesh(first);
+  mesh.enterMesh(late);
+  std::vector<std::uint32_t> fan, label;
+  EXPECT_EQ(mesh.labelFans(0, fan, label), 2u); // two triangles touching at a vertex
+  EXPECT_EQ(mesh.labelFans(1, fan, label), 1u);
+  mesh.meshOnEdge(1, 2, on_edge);
+  EXPECT_EQ(on_edge, std::vector<std::uint32_t>{first});
+  EXPECT_TRUE(mesh.traverses(first, 1, 2));
+  EXPECT_FALSE(mesh.traverses(first, 2, 1));
+  EXPECT_EQ(mesh.apex(first, 2, 0), 1u);
+  EXPECT_DOUBLE_EQ(mesh.area({first, late}), 1);
 }
 
 // --- box grid --------------------------------------------------------------------

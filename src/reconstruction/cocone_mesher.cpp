@@ -3,6 +3,7 @@
 #include "common/parallel.h"
 #include "reconstruction/box_grid.h"
 #include "reconstruction/least_area_fill.h"
+#include "reconstruction/mesh_state.h"
 
 #include <pcl/cocone/core/reconstruction.h>
 #include <pcl/cocone/core/mesh_geometry.h>
@@ -40,23 +41,17 @@ using Vector = Eigen::Vector3d;
 using detail::Box;
 using detail::BoxGrid;
 using detail::boxesApart;
+using detail::kCandidate;
+using detail::kCoconeGroup;
+using detail::kInMesh;
+using detail::kPolygonGroup;
+using detail::kRejected;
 
-constexpr std::uint32_t kCoconeGroup = 0;
 constexpr std::uint32_t kNoTriangle = std::numeric_limits<std::uint32_t>::max();
-// Triangles of polygon fills (not Delaunay triangles): never offered to a walk.
-constexpr std::uint32_t kPolygonGroup = std::numeric_limits<std::uint32_t>::max();
 // Loops longer than this are not filled as polygons (O(m^3) time, O(m^2) memory).
 constexpr std::size_t kLargestPolygonFill = 60;
 // How far (in local spacings) an unused sample may lie from the mesh to be put back.
 constexpr double kInsertionReach = 1.0;
-
-// State of a triangle of the pool.
-enum : std::uint8_t
-{
-  kRejected = 0,  // pruned, refused for good, or rolled back
-  kCandidate = 1, // may still be walked onto
-  kInMesh = 2     // part of the output
-};
 
 double
 circumradius(const Vector& a, const Vector& b, const Vector& c)
@@ -77,185 +72,22 @@ public:
   Mesher(const VoronoiCocone& voronoi, const ReconstructionParameters& parameters,
          ReconstructionReport& report)
       : voronoi_(voronoi), points_(voronoi.centeredPoints()), parameters_(parameters),
-        report_(report), n_(voronoi.size())
+        report_(report), n_(voronoi.size()), mesh_(points_)
   {}
 
   void run(std::vector<TriangleIndices>& output);
 
 private:
-  // --- pool -----------------------------------------------------------------------
-  void addToPool(const TriangleIndices& t, std::uint32_t group)
-  {
-    pool_.push_back(t);
-    state_.push_back(kCandidate);
-    group_.push_back(group);
-    oriented_.push_back(t);
-    if (!offsets_.empty()) // incidence lists exist: note it until they are rebuilt
-      for (const SampleIndex v : t)
-        late_[v].push_back(static_cast<std::uint32_t>(pool_.size() - 1));
-  }
-  void rebuildIncidence();
-  bool contains(std::uint32_t t, SampleIndex v) const
-  {
-    const TriangleIndices& tri = pool_[t];
-    return tri[0] == v || tri[1] == v || tri[2] == v;
-  }
-  SampleIndex apex(std::uint32_t t, SampleIndex a, SampleIndex b) const
-  {
-    const TriangleIndices& tri = pool_[t];
-    for (const SampleIndex v : tri)
-      if (v != a && v != b)
-        return v;
-    return kNoSample;
-  }
-  /** Puts pool triangle t (oriented already) into the mesh. */
-  void enterMesh(std::uint32_t t)
-  {
-    if (log_changes_)
-      changed_.emplace_back(t, state_[t] == kInMesh);
-    state_[t] = kInMesh;
-    const Vector nt = orientedNormal(oriented_[t]);
-    for (const SampleIndex v : oriented_[t]) {
-      ++mesh_degree_[v];
-      fan_normal_[v] += nt;
-    }
-    if (grid_)
-      grid_->insert(t, boundingBox(oriented_[t]));
-  }
-  /** Takes mesh triangle t out of the mesh; its edges may be open now. */
-  void leaveMesh(std::uint32_t t)
-  {
-    if (log_changes_)
-      changed_.emplace_back(t, state_[t] == kInMesh);
-    state_[t] = kRejected;
-    const TriangleIndices& o = oriented_[t];
-    const Vector nt = orientedNormal(o);
-    for (int k = 0; k < 3; ++k) {
-      fan_normal_[o[k]] -= nt;
-      --mesh_degree_[o[k]];
-      maybe_open_.emplace_back(o[k], o[(k + 1) % 3]);
-    }
-  }
-  /** Calls f(t) for every pool triangle t at v: those of the incidence lists, and
-   * those added since they were last rebuilt. */
-  template <typename F> void forEachAround(SampleIndex v, F&& f) const
-  {
-    for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1]; ++k)
-      f(incidence_[k].triangle);
-    forEachLate(v, f);
-  }
-  /** Calls f(t) for every pool triangle t at v added since the lists were rebuilt. */
-  template <typename F> void forEachLate(SampleIndex v, F&& f) const
-  {
-    if (late_.empty())
-      return;
-    const auto late = late_.find(v);
-    if (late != late_.end())
-      for (const std::uint32_t t : late->second)
-        f(t);
-  }
-  /** Calls f(t, apex) for every pool triangle t on edge (a, b), apex being its third
-   * vertex. */
-  template <typename F> void forEachOnEdge(SampleIndex a, SampleIndex b, F&& f) const
-  {
-    // The other two vertices are stored beside each triangle id: no look-up of the
-    // triangle itself, neither for the many that do not contain b nor for the apex.
-    for (std::uint32_t k = offsets_[a]; k < offsets_[a + 1]; ++k) {
-      const Incidence& at = incidence_[k];
-      if (at.other[0] == b)
-        f(at.triangle, at.other[1]);
-      else if (at.other[1] == b)
-        f(at.triangle, at.other[0]);
-    }
-    forEachLate(a, [&](std::uint32_t t) {
-      if (contains(t, b))
-        f(t, apex(t, a, b));
-    });
-  }
-  /** Pool triangles on edge (a, b) accepted by \a keep. */
-  template <typename Keep>
-  void trianglesOnEdge(SampleIndex a, SampleIndex b, Keep&& keep,
-                       std::vector<std::uint32_t>& out) const
-  {
-    out.clear();
-    forEachOnEdge(a, b, [&](std::uint32_t t, SampleIndex) {
-      if (keep(t))
-        out.push_back(t);
-    });
-  }
-  /** Mesh triangles on edge (a, b). */
-  void meshOnEdge(SampleIndex a, SampleIndex b, std::vector<std::uint32_t>& out) const
-  {
-    trianglesOnEdge(
-        a, b, [&](std::uint32_t t) { return state_[t] == kInMesh; }, out);
-  }
-  /** True when mesh triangle t traverses the edge a -> b. */
-  bool traverses(std::uint32_t t, SampleIndex a, SampleIndex b) const
-  {
-    return edgeSlot(t, a, b) >= 0;
-  }
-  /** The k for which mesh triangle t's edge k is a -> b; -1 when it has no such edge.
-   */
-  int edgeSlot(std::uint32_t t, SampleIndex a, SampleIndex b) const
-  {
-    const TriangleIndices& o = oriented_[t];
-    for (int k = 0; k < 3; ++k)
-      if (o[k] == a && o[(k + 1) % 3] == b)
-        return k;
-    return -1;
-  }
-  Vector orientedNormal(const TriangleIndices& o) const
-  {
-    return (points_[o[1]] - points_[o[0]]).cross(points_[o[2]] - points_[o[0]]);
-  }
-  /** Whether the triangle (b, a, x), which would continue the mesh across its edge
-   * a -> b, faces away from the mesh around a or around b (fan_normal_). */
-  bool turnsOver(SampleIndex a, SampleIndex b, SampleIndex x) const
-  {
-    const Vector normal = orientedNormal({b, a, x});
-    return normal.dot(fan_normal_[a]) < 0 || normal.dot(fan_normal_[b]) < 0;
-  }
-
   // --- stages ---------------------------------------------------------------------
   void measureSpacing();
   double typicalSpacing(const std::vector<SampleIndex>& samples) const;
   bool isTrueBoundary(double area, double perimeter, double spacing) const;
-  double loopLength(const std::vector<SampleIndex>& loop) const;
-  /** Corners of the axis-aligned bounding box of triangle \a t. */
-  Box boundingBox(const TriangleIndices& t) const
-  {
-    return {points_[t[0]].cwiseMin(points_[t[1]]).cwiseMin(points_[t[2]]),
-            points_[t[0]].cwiseMax(points_[t[1]]).cwiseMax(points_[t[2]])};
-  }
-  Box boundingBox(const std::vector<SampleIndex>& samples) const
-  {
-    Vector low = points_[samples.front()], high = low;
-    for (const SampleIndex v : samples) {
-      low = low.cwiseMin(points_[v]);
-      high = high.cwiseMax(points_[v]);
-    }
-    return {low, high};
-  }
   void collectCandidates();
   void removeLids();
   bool fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
                                 std::vector<TriangleIndices>& fill,
                                 std::vector<std::uint32_t>& blockers);
   bool fillPolygon(std::vector<SampleIndex>& loop, double spacing);
-  bool traceLoopFrom(SampleIndex start, std::vector<SampleIndex>& loop) const;
-  bool closes(const std::vector<SampleIndex>& loop,
-              const std::vector<std::uint32_t>& added);
-  void undo(const std::vector<std::uint32_t>& added);
-  bool intersectsSurface(const std::vector<std::uint32_t>& added);
-  void buildGrid();
-  void meshNear(const Vector& low, const Vector& high,
-                std::vector<std::uint32_t>& nearby) const;
-  void meshNear(const TriangleIndices& t, std::vector<std::uint32_t>& nearby) const;
-  bool crossesMesh(std::uint32_t t);
-  double area(const std::vector<std::uint32_t>& triangles) const;
-  std::size_t labelFans(SampleIndex v, std::vector<std::uint32_t>& fan,
-                        std::vector<std::uint32_t>& label) const;
-  std::size_t countFans(SampleIndex v) const;
   std::size_t prune(std::uint32_t group);
   bool mustPrune(std::uint32_t t, std::vector<SampleIndex>& apexes,
                  std::vector<double>& angles) const;
@@ -278,7 +110,6 @@ private:
   bool seedTriangle(std::uint32_t& seed);
   void stitch(std::vector<std::vector<SampleIndex> >& loops);
   std::size_t stitchLoops(std::vector<std::vector<SampleIndex> >& tried);
-  std::vector<std::vector<SampleIndex> > traceLoops() const;
   void insertUnusedSamples();
   std::size_t removeCrossings();
   template <typename Crosses>
@@ -293,46 +124,14 @@ private:
   ReconstructionReport& report_;
   const std::size_t n_;
 
-  std::vector<TriangleIndices> pool_;
-  std::vector<std::uint8_t> state_;
-  std::vector<std::uint32_t> group_;
-  std::vector<TriangleIndices> oriented_; // orientation in the mesh
-  /** A pool triangle at a vertex, with its two other vertices. */
-  struct Incidence
-  {
-    std::uint32_t triangle;
-    std::array<SampleIndex, 2> other;
-  };
-  // Incidence lists: the triangles at v are incidence_[offsets_[v] .. offsets_[v + 1]).
-  std::vector<std::uint32_t> offsets_;
-  std::vector<Incidence> incidence_;
-  std::vector<std::uint32_t> group_start_; // group g spans [start[g], start[g + 1])
-
-  // A uniform grid over the mesh triangles' bounding boxes, built (buildGrid) by the
-  // first check that added triangles cross nothing (a fill across a hole can meet a
-  // part of the surface that is near in space but far along it). Triangles added later
-  // are entered as they come; removed ones stay listed and are skipped by state.
-  std::optional<BoxGrid> grid_;
-  std::unordered_map<SampleIndex, std::vector<std::uint32_t> > late_; // added since
-  std::vector<std::uint32_t> mesh_degree_; // mesh triangles at each sample
-  // Sum of the oriented normals (twice the areas) of the mesh triangles at each sample:
-  // the side the mesh faces there (see step()).
-  std::vector<Vector> fan_normal_;
+  detail::MeshState mesh_;
   std::vector<double> spacing_;            // local sample spacing
   std::vector<SampleIndex> seed_order_;    // samples by decreasing x
   std::vector<SampleIndex> pinched_;       // apexes of forced steps
-  std::vector<std::uint32_t> near_;        // scratch of crossesMesh
-  bool log_changes_ = false; // whether enterMesh and leaveMesh log to changed_
-  // Triangles that entered or left the mesh, each with whether it was in the mesh
-  // before.
-  std::vector<std::pair<std::uint32_t, bool> > changed_;
   detail::LeastAreaFillScratch fill_scratch_;  // of fillByDynamicProgramming
+  std::vector<std::uint32_t> near_;            // of fillByDynamicProgramming
   std::vector<TriangleIndices> obstacles_;     // of fillByDynamicProgramming
   std::vector<std::uint8_t> pinch_queued_; // scratch of resolvePinches, all 0 between calls
-  // Edges that may be boundary edges: those the walk could not continue across and
-  // those of removed triangles. Every boundary edge of the mesh is among them, so
-  // tracing the loops does not need to look at every triangle.
-  std::vector<std::pair<SampleIndex, SampleIndex> > maybe_open_;
   std::size_t seed_cursor_ = 0;
 
   // Scratch, reused to keep loops free of allocations.
@@ -346,25 +145,6 @@ private:
   // closed by the time they are taken) skip the look-up that would find out.
   std::vector<std::uint8_t> closed_edges_;
 };
-
-void
-Mesher::rebuildIncidence()
-{
-  late_.clear();
-  offsets_.assign(n_ + 1, 0);
-  for (const TriangleIndices& t : pool_)
-    for (const SampleIndex v : t)
-      ++offsets_[v + 1];
-  for (std::size_t i = 0; i < n_; ++i)
-    offsets_[i + 1] += offsets_[i];
-  incidence_.resize(offsets_[n_]);
-  std::vector<std::uint32_t> fill(offsets_.begin(), offsets_.end() - 1);
-  for (std::uint32_t t = 0; t < pool_.size(); ++t) {
-    const TriangleIndices& tri = pool_[t];
-    for (int k = 0; k < 3; ++k)
-      incidence_[fill[tri[k]]++] = {t, {tri[(k + 1) % 3], tri[(k + 2) % 3]}};
-  }
-}
 
 // ---------------------------------------------------------------------------------
 // Local spacing: the distance from a sample to its third nearest neighbour among the
@@ -424,16 +204,6 @@ Mesher::isTrueBoundary(double area, double perimeter, double spacing) const
          2 * area / perimeter > parameters_.true_boundary_ratio * spacing;
 }
 
-/** Length of a closed loop (the last vertex joins the first). */
-double
-Mesher::loopLength(const std::vector<SampleIndex>& loop) const
-{
-  double length = 0;
-  for (std::size_t k = 0; k < loop.size(); ++k)
-    length += (points_[loop[(k + 1) % loop.size()]] - points_[loop[k]]).norm();
-  return length;
-}
-
 // ---------------------------------------------------------------------------------
 // Candidates: boundary samples cast no vote. The original COCONE keeps a triangle
 // marked by all three vertices, which caps open surfaces with a lid or, after pruning,
@@ -446,10 +216,7 @@ Mesher::collectCandidates()
   const std::vector<std::uint8_t>& boundary = report_.boundary_samples;
   // Nearly every marked triangle of a well sampled surface is a candidate.
   const std::size_t expected = voronoi_.markedTriangles().size();
-  pool_.reserve(expected);
-  state_.reserve(expected);
-  group_.reserve(expected);
-  oriented_.reserve(expected);
+  mesh_.reservePool(expected);
   for (const MarkedTriangle& t : voronoi_.markedTriangles()) {
     int voters = 0;
     bool every_voter_marks = true;
@@ -460,11 +227,11 @@ Mesher::collectCandidates()
       every_voter_marks = every_voter_marks && t.isMarkedBy(k);
     }
     if (voters > 0 && every_voter_marks)
-      addToPool(t.vertex, kCoconeGroup);
+      mesh_.addToPool(t.vertex, kCoconeGroup);
   }
-  report_.candidate_triangles = pool_.size();
-  group_start_ = {0, static_cast<std::uint32_t>(pool_.size())};
-  rebuildIncidence();
+  report_.candidate_triangles = mesh_.poolSize();
+  mesh_.closeGroup();
+  mesh_.rebuildIncidence();
 }
 
 // Lids. A hole that is small against the local feature size leaves most samples on its
@@ -481,14 +248,14 @@ void
 Mesher::removeLids()
 {
   constexpr double kOversized = 1.25; // circumradius in local spacings
-  std::vector<std::uint8_t> oversized(pool_.size(), 0);
+  std::vector<std::uint8_t> oversized(mesh_.poolSize(), 0);
   detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
     tbb::parallel_for(
-        tbb::blocked_range<std::uint32_t>(0, static_cast<std::uint32_t>(pool_.size()),
+        tbb::blocked_range<std::uint32_t>(0, static_cast<std::uint32_t>(mesh_.poolSize()),
                                           4096),
         [&](const tbb::blocked_range<std::uint32_t>& range) {
           for (std::uint32_t t = range.begin(); t != range.end(); ++t) {
-            const TriangleIndices& tri = pool_[t];
+            const TriangleIndices& tri = mesh_.triangle(t);
             const double local =
                 std::max({spacing_[tri[0]], spacing_[tri[1]], spacing_[tri[2]]});
             oversized[t] = circumradius(points_[tri[0]], points_[tri[1]],
@@ -499,27 +266,29 @@ Mesher::removeLids()
   // Boundary samples and the samples sharing a candidate with one.
   const std::vector<std::uint8_t>& boundary = report_.boundary_samples;
   std::vector<std::uint8_t> near_boundary(boundary);
-  for (const TriangleIndices& tri : pool_)
+  for (std::uint32_t t = 0; t < mesh_.poolSize(); ++t) {
+    const TriangleIndices& tri = mesh_.triangle(t);
     if (boundary[tri[0]] || boundary[tri[1]] || boundary[tri[2]])
       for (const SampleIndex v : tri)
         near_boundary[v] = 1;
-  std::vector<std::uint8_t> seen(pool_.size(), 0);
+  }
+  std::vector<std::uint8_t> seen(mesh_.poolSize(), 0);
   std::vector<std::uint32_t> patch, on_edge;
   std::vector<SampleIndex> vertices;
-  for (std::uint32_t start = 0; start < pool_.size(); ++start) {
+  for (std::uint32_t start = 0; start < mesh_.poolSize(); ++start) {
     if (!oversized[start] || seen[start])
       continue;
     patch.assign(1, start);
     seen[start] = 1;
     double area = 0, perimeter = 0;
     for (std::size_t head = 0; head < patch.size(); ++head) {
-      const TriangleIndices& tri = pool_[patch[head]];
+      const TriangleIndices& tri = mesh_.triangle(patch[head]);
       area += 0.5 * (points_[tri[1]] - points_[tri[0]])
                         .cross(points_[tri[2]] - points_[tri[0]])
                         .norm();
       for (int k = 0; k < 3; ++k) {
         const SampleIndex a = tri[k], b = tri[(k + 1) % 3];
-        trianglesOnEdge(
+        mesh_.trianglesOnEdge(
             a, b, [&](std::uint32_t s) { return oversized[s] != 0; }, on_edge);
         if (on_edge.size() == 1)
           perimeter += (points_[a] - points_[b]).norm();
@@ -532,14 +301,14 @@ Mesher::removeLids()
     }
     vertices.clear();
     for (const std::uint32_t t : patch)
-      vertices.insert(vertices.end(), pool_[t].begin(), pool_[t].end());
+      vertices.insert(vertices.end(), mesh_.triangle(t).begin(), mesh_.triangle(t).end());
     if (!isTrueBoundary(area, perimeter, typicalSpacing(vertices)))
       continue;
     if (std::none_of(vertices.begin(), vertices.end(),
                      [&](SampleIndex v) { return near_boundary[v] != 0; }))
       continue; // a sparsely sampled flat region, not a hole
     for (const std::uint32_t t : patch)
-      state_[t] = kRejected;
+      mesh_.reject(t);
     report_.lid_triangles += patch.size();
   }
 }
@@ -559,15 +328,15 @@ bool
 Mesher::mustPrune(std::uint32_t t, std::vector<SampleIndex>& apexes,
                   std::vector<double>& angles) const
 {
-  const TriangleIndices& tri = pool_[t];
-  const std::uint32_t group = group_[t];
+  const TriangleIndices& tri = mesh_.triangle(t);
+  const std::uint32_t group = mesh_.group(t);
   bool bare = false, held = false;
   for (int k = 0; k < 3; ++k) {
     const SampleIndex a = tri[k], b = tri[(k + 1) % 3];
     // The apexes of the live triangles on the edge (t's own among them).
     apexes.clear();
-    forEachOnEdge(a, b, [&](std::uint32_t s, SampleIndex apex_of_s) {
-      if (state_[s] == kInMesh || (state_[s] == kCandidate && group_[s] == group))
+    mesh_.forEachOnEdge(a, b, [&](std::uint32_t s, SampleIndex apex_of_s) {
+      if (mesh_.inMesh(s) || (mesh_.state(s) == kCandidate && mesh_.group(s) == group))
         apexes.push_back(apex_of_s);
     });
     if (apexes.size() == 1) {
@@ -614,16 +383,16 @@ Mesher::prune(std::uint32_t group)
 {
   const std::vector<std::uint8_t>& boundary = report_.boundary_samples;
   // A group's triangles are contiguous in the pool.
-  const std::uint32_t first = group_start_[group], last = group_start_[group + 1];
+  const std::uint32_t first = mesh_.groupBegin(group), last = mesh_.groupEnd(group);
   const auto is_protected = [&](std::uint32_t t) {
-    const TriangleIndices& tri = pool_[t];
+    const TriangleIndices& tri = mesh_.triangle(t);
     return group == kCoconeGroup &&
            (boundary[tri[0]] || boundary[tri[1]] || boundary[tri[2]]);
   };
   std::vector<std::uint32_t> work;
   std::vector<std::uint8_t> queued(last - first, 0);
   for (std::uint32_t t = first; t < last; ++t)
-    if (state_[t] == kCandidate) {
+    if (mesh_.state(t) == kCandidate) {
       work.push_back(t);
       queued[t - first] = 1;
     }
@@ -655,19 +424,19 @@ Mesher::prune(std::uint32_t group)
     const std::uint32_t t = work.back();
     work.pop_back();
     queued[t - first] = 0;
-    if (state_[t] != kCandidate)
+    if (mesh_.state(t) != kCandidate)
       continue;
     if (stale[t - first] ? is_protected(t) || !mustPrune(t, apexes_, angles_)
                          : !verdict[t - first])
       continue;
-    state_[t] = kRejected;
+    mesh_.reject(t);
     ++pruned;
-    const TriangleIndices& tri = pool_[t];
+    const TriangleIndices& tri = mesh_.triangle(t);
     for (int k = 0; k < 3; ++k) {
-      trianglesOnEdge(
+      mesh_.trianglesOnEdge(
           tri[k], tri[(k + 1) % 3],
           [&](std::uint32_t s) {
-            return state_[s] == kCandidate && group_[s] == group;
+            return mesh_.state(s) == kCandidate && mesh_.group(s) == group;
           },
           neighbours);
       for (const std::uint32_t s : neighbours) {
@@ -702,11 +471,11 @@ Mesher::prune(std::uint32_t group)
 Mesher::Step
 Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
 {
-  if (state_[t] != kInMesh)
+  if (!mesh_.inMesh(t))
     return {Step::done, 0};
   if (!closed_edges_.empty() && ((closed_edges_[t] >> slot) & 1u))
     return {Step::done, 0}; // closed already
-  const TriangleIndices& o = oriented_[t];
+  const TriangleIndices& o = mesh_.oriented(t);
   const SampleIndex a = o[slot], b = o[(slot + 1) % 3], c = o[(slot + 2) % 3];
 
   // One pass over the triangles at a finds both the mesh triangles on edge (a, b) and
@@ -714,11 +483,11 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
   std::size_t mesh_on_edge = 0;
   around_.clear();
   around_apex_.clear();
-  forEachOnEdge(a, b, [&](std::uint32_t s, SampleIndex apex_of_s) {
-    if (state_[s] == kInMesh) {
+  mesh_.forEachOnEdge(a, b, [&](std::uint32_t s, SampleIndex apex_of_s) {
+    if (mesh_.inMesh(s)) {
       ++mesh_on_edge;
     }
-    else if (state_[s] == kCandidate && group_[s] == group) {
+    else if (mesh_.state(s) == kCandidate && mesh_.group(s) == group) {
       around_.push_back(s);
       around_apex_.push_back(apex_of_s);
     }
@@ -732,14 +501,14 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
   const Vector axis = (points_[b] - pa).normalized();
   Vector reference = points_[c] - pa;
   reference = (reference - reference.dot(axis) * axis).normalized();
-  const Vector up = orientedNormal(o).normalized();
+  const Vector up = mesh_.orientedNormal(o).normalized();
   std::size_t best_k = around_.size();
   double best_angle = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < around_.size(); ++k) {
     Vector u = points_[around_apex_[k]] - pa;
     u -= u.dot(axis) * axis;
     const double along = u.dot(reference), across = u.dot(up);
-    if (along > 0 || turnsOver(a, b, around_apex_[k]))
+    if (along > 0 || mesh_.turnsOver(a, b, around_apex_[k]))
       continue;
     // What is left lies between pi/2 and 3pi/2 from t, where this grows with the angle
     // as atan2 does (and costs less); an apex on the edge's line comes last.
@@ -751,24 +520,24 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
     }
   }
   if (best_k == around_.size()) {
-    maybe_open_.emplace_back(a, b);
+    mesh_.noteMaybeOpen(a, b);
     return {Step::done, 0};
   }
   const std::uint32_t best = around_[best_k];
   const SampleIndex x = around_apex_[best_k];
 
   // Guards: at most two triangles per edge, traversing it in opposite directions.
-  bool x_attached = mesh_degree_[x] == 0;
+  bool x_attached = mesh_.meshDegree(x) == 0;
   const std::array<std::pair<SampleIndex, SampleIndex>, 2> new_edges = {
       {{a, x}, {x, b}}};
   std::array<std::uint32_t, 2> across = {kNoTriangle,
                                          kNoTriangle}; // mesh triangle there
   for (int e = 0; e < 2; ++e) {
     const auto [from, to] = new_edges[e];
-    meshOnEdge(from, to, on_edge_);
+    mesh_.meshOnEdge(from, to, on_edge_);
     if (on_edge_.size() >= 2 ||
-        (on_edge_.size() == 1 && traverses(on_edge_[0], from, to))) {
-      maybe_open_.emplace_back(a, b);
+        (on_edge_.size() == 1 && mesh_.traverses(on_edge_[0], from, to))) {
+      mesh_.noteMaybeOpen(a, b);
       return {Step::refused, best};
     }
     if (on_edge_.size() == 1) {
@@ -777,14 +546,14 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
     }
   }
   if (!x_attached && !allow_pinch) {
-    maybe_open_.emplace_back(a, b); // unless a forced step closes it later
+    mesh_.noteMaybeOpen(a, b); // unless a forced step closes it later
     return {Step::pinch, best};     // x has a fan elsewhere: it would pinch, for now
   }
   if (!x_attached)
     pinched_.push_back(x); // resolvePinches() looks at it again
 
-  oriented_[best] = {b, a, x};
-  enterMesh(best);
+  mesh_.orient(best, {b, a, x});
+  mesh_.enterMesh(best);
   if (!closed_edges_.empty()) {
     closed_edges_[t] |= static_cast<std::uint8_t>(1u << slot);
     closed_edges_[best] |= 1u; // b -> a
@@ -793,7 +562,7 @@ Mesher::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
         continue;
       closed_edges_[best] |= static_cast<std::uint8_t>(1u << (e + 1));
       // The triangle there traverses the edge the other way (the guards checked).
-      const int k = edgeSlot(across[e], new_edges[e].second, new_edges[e].first);
+      const int k = mesh_.edgeSlot(across[e], new_edges[e].second, new_edges[e].first);
       closed_edges_[across[e]] |= static_cast<std::uint8_t>(1u << k);
     }
   }
@@ -874,7 +643,7 @@ Mesher::resolvePinches(std::vector<std::uint32_t>* removed)
     const SampleIndex v = work.back();
     work.pop_back();
     queued[v] = 0;
-    if (labelFans(v, fan, label) <= 1)
+    if (mesh_.labelFans(v, fan, label) <= 1)
       continue;
     size.assign(fan.size(), 0);
     for (const std::uint32_t root : label)
@@ -884,12 +653,12 @@ Mesher::resolvePinches(std::vector<std::uint32_t>* removed)
     for (std::size_t i = 0; i < fan.size(); ++i) {
       if (label[i] == keep)
         continue;
-      leaveMesh(fan[i]);
+      mesh_.leaveMesh(fan[i]);
       if (removed != nullptr)
         removed->push_back(fan[i]);
       else
         ++report_.pinch_removed_triangles;
-      for (const SampleIndex w : oriented_[fan[i]]) {
+      for (const SampleIndex w : mesh_.oriented(fan[i])) {
         if (w != v && !queued[w]) {
           queued[w] = 1;
           work.push_back(w);
@@ -920,19 +689,22 @@ Mesher::seedTriangle(std::uint32_t& seed)
     });
   }
   const auto is_free = [&](std::uint32_t t) {
-    const TriangleIndices& tri = pool_[t];
-    return state_[t] == kCandidate && group_[t] == kCoconeGroup &&
-           mesh_degree_[tri[0]] == 0 && mesh_degree_[tri[1]] == 0 &&
-           mesh_degree_[tri[2]] == 0;
+    const TriangleIndices& tri = mesh_.triangle(t);
+    return mesh_.state(t) == kCandidate && mesh_.group(t) == kCoconeGroup &&
+           mesh_.meshDegree(tri[0]) == 0 && mesh_.meshDegree(tri[1]) == 0 &&
+           mesh_.meshDegree(tri[2]) == 0;
   };
   SampleIndex extreme = kNoSample;
   for (; seed_cursor_ < seed_order_.size(); ++seed_cursor_) {
     const SampleIndex v = seed_order_[seed_cursor_];
-    if (mesh_degree_[v] != 0)
+    if (mesh_.meshDegree(v) != 0)
       continue; // a free triangle has no vertex in the mesh
     bool has_free = false;
-    for (std::uint32_t k = offsets_[v]; k < offsets_[v + 1] && !has_free; ++k)
-      has_free = is_free(incidence_[k].triangle);
+    for (const detail::MeshState::Incidence& at : mesh_.listedAround(v))
+      if (is_free(at.triangle)) {
+        has_free = true;
+        break;
+      }
     if (has_free) {
       extreme = v;
       break;
@@ -944,23 +716,23 @@ Mesher::seedTriangle(std::uint32_t& seed)
   std::size_t best_violations = std::numeric_limits<std::size_t>::max();
   double best_alignment = -1;
   bool found = false;
-  for (std::uint32_t k = offsets_[extreme]; k < offsets_[extreme + 1]; ++k) {
-    const std::uint32_t t = incidence_[k].triangle;
-    const TriangleIndices& tri = pool_[t];
+  for (const detail::MeshState::Incidence& at_extreme : mesh_.listedAround(extreme)) {
+    const std::uint32_t t = at_extreme.triangle;
+    const TriangleIndices& tri = mesh_.triangle(t);
     if (!is_free(t))
       continue;
-    Vector normal = orientedNormal(tri);
+    Vector normal = mesh_.orientedNormal(tri);
     if (!(normal.norm() > 0))
       continue;
     normal.normalize();
     if (normal.x() < 0)
       normal = -normal;
     std::size_t violations = 0;
-    for (std::uint32_t m = offsets_[extreme]; m < offsets_[extreme + 1]; ++m) {
-      const std::uint32_t s = incidence_[m].triangle;
-      if (s == t || state_[s] != kCandidate || group_[s] != kCoconeGroup)
+    for (const detail::MeshState::Incidence& at : mesh_.listedAround(extreme)) {
+      const std::uint32_t s = at.triangle;
+      if (s == t || mesh_.state(s) != kCandidate || mesh_.group(s) != kCoconeGroup)
         continue;
-      for (const SampleIndex v : pool_[s])
+      for (const SampleIndex v : mesh_.triangle(s))
         if (normal.dot(points_[v] - p) > 1e-12 * (points_[v] - p).norm())
           ++violations;
     }
@@ -974,10 +746,10 @@ Mesher::seedTriangle(std::uint32_t& seed)
   }
   if (!found)
     return false;
-  TriangleIndices o = pool_[seed];
-  if (orientedNormal(o).x() < 0)
+  TriangleIndices o = mesh_.triangle(seed);
+  if (mesh_.orientedNormal(o).x() < 0)
     std::swap(o[1], o[2]);
-  oriented_[seed] = o;
+  mesh_.orient(seed, o);
   return true;
 }
 
@@ -987,56 +759,14 @@ Mesher::walkAll()
   std::vector<std::pair<std::uint32_t, int> > frontier;
   std::vector<std::uint32_t> added;
   std::uint32_t seed = 0;
-  closed_edges_.assign(pool_.size(), 0);
+  closed_edges_.assign(mesh_.poolSize(), 0);
   while (seedTriangle(seed)) {
-    enterMesh(seed);
+    mesh_.enterMesh(seed);
     report_.walked_triangles += 1;
     frontier = {{seed, 0}, {seed, 1}, {seed, 2}};
     report_.walked_triangles += walk(frontier, kCoconeGroup, added);
   }
   std::vector<std::uint8_t>().swap(closed_edges_); // stitching removes triangles
-}
-
-// ---------------------------------------------------------------------------------
-std::vector<std::vector<SampleIndex> >
-Mesher::traceLoops() const
-{
-  // Boundary edges a -> b, as the single mesh triangle on them traverses them: found
-  // among the edges that may be open (see maybe_open_).
-  std::vector<std::pair<SampleIndex, SampleIndex> > edges;
-  std::vector<std::uint32_t> on_edge;
-  for (const auto& [a, b] : maybe_open_) {
-    meshOnEdge(a, b, on_edge);
-    if (on_edge.size() != 1)
-      continue;
-    if (traverses(on_edge[0], a, b))
-      edges.emplace_back(a, b);
-    else
-      edges.emplace_back(b, a);
-  }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  std::vector<std::uint8_t> used(edges.size(), 0);
-  std::vector<std::vector<SampleIndex> > loops;
-  for (std::size_t start = 0; start < edges.size(); ++start) {
-    if (used[start])
-      continue;
-    std::vector<SampleIndex> loop;
-    std::size_t e = start;
-    while (!used[e]) {
-      used[e] = 1;
-      loop.push_back(edges[e].first);
-      // The edge leaving edges[e].second (one per vertex on a manifold boundary).
-      const auto next = std::lower_bound(
-          edges.begin(), edges.end(),
-          std::make_pair(edges[e].second, static_cast<SampleIndex>(0)));
-      if (next == edges.end() || next->first != edges[e].second)
-        break;
-      e = static_cast<std::size_t>(next - edges.begin());
-    }
-    loops.push_back(std::move(loop));
-  }
-  return loops;
 }
 
 // Stitching (paper 3.4.2): for each hole, the Delaunay triangles with all vertices on
@@ -1055,7 +785,7 @@ Mesher::stitch(std::vector<std::vector<SampleIndex> >& loops)
 
   // Offer every hole its Delaunay triangles, in a group of its own (numbered after
   // those of any earlier call).
-  const std::uint32_t first_group = static_cast<std::uint32_t>(group_start_.size() - 1);
+  const std::uint32_t first_group = mesh_.groupCount();
   std::vector<std::vector<SampleIndex> > members(loops.size());
   std::vector<std::uint8_t> kept_open(loops.size(), 0);
   std::vector<std::vector<std::array<SampleIndex, 3> > > offered(loops.size());
@@ -1071,7 +801,7 @@ Mesher::stitch(std::vector<std::vector<SampleIndex> >& loops)
       for (const SampleIndex v : loops[h]) {
         voronoi_.delaunayNeighbours(v, neighbours);
         for (const SampleIndex w : neighbours)
-          if (mesh_degree_[w] == 0)
+          if (mesh_.meshDegree(w) == 0)
             inner.push_back(w);
       }
       std::sort(inner.begin(), inner.end());
@@ -1092,7 +822,7 @@ Mesher::stitch(std::vector<std::vector<SampleIndex> >& loops)
         for (std::size_t k = 0; k < loops[h].size(); ++k)
           vector_area += 0.5 * points_[loops[h][k]].cross(
                                    points_[loops[h][(k + 1) % loops[h].size()]]);
-        kept_open[h] = isTrueBoundary(vector_area.norm(), loopLength(loops[h]),
+        kept_open[h] = isTrueBoundary(vector_area.norm(), mesh_.loopLength(loops[h]),
                                       typicalSpacing(vertices));
       }
       if (!kept_open[h])
@@ -1104,27 +834,27 @@ Mesher::stitch(std::vector<std::vector<SampleIndex> >& loops)
   });
   for (std::size_t h = 0; h < loops.size(); ++h) {
     for (const auto& t : offered[h])
-      addToPool({t[0], t[1], t[2]}, first_group + static_cast<std::uint32_t>(h));
+      mesh_.addToPool({t[0], t[1], t[2]}, first_group + static_cast<std::uint32_t>(h));
     std::vector<std::array<SampleIndex, 3> >().swap(offered[h]);
-    group_start_.push_back(static_cast<std::uint32_t>(pool_.size()));
+    mesh_.closeGroup();
   }
   // Nothing added to the pool since the lists were built (every loop kept open, as a
   // hemisphere's rim is): they are current, and rebuilding them would read the whole
   // pool (0.3 s at a million samples).
-  if (!late_.empty())
-    rebuildIncidence();
+  if (mesh_.hasLateTriangles())
+    mesh_.rebuildIncidence();
   // A hole triangle that is a mesh triangle already is of no use.
   std::vector<std::uint32_t> same;
-  for (std::uint32_t t = 0; t < pool_.size(); ++t) {
-    if (group_[t] == kCoconeGroup || state_[t] != kCandidate)
+  for (std::uint32_t t = 0; t < mesh_.poolSize(); ++t) {
+    if (mesh_.group(t) == kCoconeGroup || mesh_.state(t) != kCandidate)
       continue;
-    const TriangleIndices& tri = pool_[t];
-    trianglesOnEdge(
+    const TriangleIndices& tri = mesh_.triangle(t);
+    mesh_.trianglesOnEdge(
         tri[0], tri[1],
-        [&](std::uint32_t u) { return state_[u] == kInMesh && contains(u, tri[2]); },
+        [&](std::uint32_t u) { return mesh_.inMesh(u) && mesh_.contains(u, tri[2]); },
         same);
     if (!same.empty())
-      state_[t] = kRejected;
+      mesh_.reject(t);
   }
 
   std::vector<std::pair<std::uint32_t, int> > frontier;
@@ -1137,10 +867,10 @@ Mesher::stitch(std::vector<std::vector<SampleIndex> >& loops)
     frontier.clear();
     for (std::size_t k = 0; k < loop.size(); ++k) {
       const SampleIndex a = loop[k], b = loop[(k + 1) % loop.size()];
-      meshOnEdge(a, b, on_edge);
+      mesh_.meshOnEdge(a, b, on_edge);
       if (on_edge.size() != 1)
         continue;
-      const TriangleIndices& o = oriented_[on_edge[0]];
+      const TriangleIndices& o = mesh_.oriented(on_edge[0]);
       for (int slot = 0; slot < 3; ++slot)
         if (o[slot] == a && o[(slot + 1) % 3] == b)
           frontier.emplace_back(on_edge[0], slot);
@@ -1148,13 +878,13 @@ Mesher::stitch(std::vector<std::vector<SampleIndex> >& loops)
     if (frontier.size() != loop.size())
       continue;
     const double spacing = typicalSpacing(members[h]);
-    const double perimeter = loopLength(loop);
+    const double perimeter = mesh_.loopLength(loop);
 
     prune(group);
     added.clear();
     walk(frontier, group, added);
-    const bool walk_closes = !added.empty() && closes(loop, added);
-    const double fill_area = area(added);
+    const bool walk_closes = !added.empty() && mesh_.closes(loop, added);
+    const double fill_area = mesh_.area(added);
     PCL_VERBOSE("[pcl::cocone::reconstructSurface] hole of %zu edges: Delaunay fill %s, "
               "size %.2f local spacings\n",
               loop.size(), walk_closes ? "closes it" : "does not close it",
@@ -1165,7 +895,7 @@ Mesher::stitch(std::vector<std::vector<SampleIndex> >& loops)
       stitched[h] = 1;
       continue;
     }
-    undo(added);
+    mesh_.undo(added);
 
     if (fillPolygon(loops[h], spacing))
       stitched[h] = 1;
@@ -1188,20 +918,13 @@ std::size_t
 Mesher::stitchLoops(std::vector<std::vector<SampleIndex> >& tried)
 {
   // What changed since the last round, net: a fill tried and undone changes nothing.
-  std::stable_sort(changed_.begin(), changed_.end(),
-                   [](const auto& x, const auto& y) { return x.first < y.first; });
-  std::vector<Box> changed_boxes;
-  for (std::size_t k = 0; k < changed_.size(); ++k)
-    if ((k == 0 || changed_[k].first != changed_[k - 1].first) &&
-        changed_[k].second != (state_[changed_[k].first] == kInMesh))
-      changed_boxes.push_back(boundingBox(oriented_[changed_[k].first]));
-  changed_.clear();
+  const std::vector<Box> changed_boxes = mesh_.takeNetChangedBoxes();
   std::vector<std::vector<SampleIndex> > loops, keys;
-  for (std::vector<SampleIndex>& loop : traceLoops()) {
+  for (std::vector<SampleIndex>& loop : mesh_.traceLoops()) {
     std::vector<SampleIndex> key = loop;
     std::sort(key.begin(), key.end());
     if (std::binary_search(tried.begin(), tried.end(), key)) {
-      const Box loop_box = boundingBox(loop);
+      const Box loop_box = mesh_.boundingBox(loop);
       if (std::all_of(changed_boxes.begin(), changed_boxes.end(),
                       [&](const Box& box) { return boxesApart(box, loop_box); }))
         continue;
@@ -1240,21 +963,21 @@ Mesher::fillPolygon(std::vector<SampleIndex>& loop, double spacing)
       // Grow the hole over the triangles in the way; where that pinches a vertex (a
       // blocker touching the hole at a vertex only), drop its smaller fan so that the
       // holes join through an edge.
-      undo(blockers);
+      mesh_.undo(blockers);
       removed.insert(removed.end(), blockers.begin(), blockers.end());
       for (const std::uint32_t t : blockers)
-        pinched_.insert(pinched_.end(), oriented_[t].begin(), oriented_[t].end());
+        pinched_.insert(pinched_.end(), mesh_.oriented(t).begin(), mesh_.oriented(t).end());
       resolvePinches(&removed);
-      if (!traceLoopFrom(loop.front(), grown) &&
-          !(mesh_degree_[loop.back()] && traceLoopFrom(loop.back(), grown)))
+      if (!mesh_.traceLoopFrom(loop.front(), grown) &&
+          !(mesh_.meshDegree(loop.back()) && mesh_.traceLoopFrom(loop.back(), grown)))
         break;
       loop = grown;
       continue;
     }
-    const double perimeter = loopLength(loop);
+    const double perimeter = mesh_.loopLength(loop);
     double fill_area = 0;
     for (const TriangleIndices& t : fill)
-      fill_area += 0.5 * orientedNormal(t).norm();
+      fill_area += 0.5 * mesh_.orientedNormal(t).norm();
     PCL_VERBOSE(
         "[pcl::cocone::reconstructSurface] hole of %zu edges: polygon fill of size "
         "%.2f local spacings\n",
@@ -1263,13 +986,13 @@ Mesher::fillPolygon(std::vector<SampleIndex>& loop, double spacing)
       break;
     added.clear();
     for (const TriangleIndices& t : fill) {
-      addToPool(t, kPolygonGroup);
-      added.push_back(static_cast<std::uint32_t>(pool_.size() - 1));
-      enterMesh(added.back());
+      mesh_.addToPool(t, kPolygonGroup);
+      added.push_back(static_cast<std::uint32_t>(mesh_.poolSize() - 1));
+      mesh_.enterMesh(added.back());
     }
-    closed = closes(loop, added);
+    closed = mesh_.closes(loop, added);
     if (!closed) {
-      undo(added);
+      mesh_.undo(added);
       break;
     }
   }
@@ -1280,162 +1003,8 @@ Mesher::fillPolygon(std::vector<SampleIndex>& loop, double spacing)
     return true;
   }
   for (const std::uint32_t t : removed) // restore what was removed to grow the hole
-    enterMesh(t);
+    mesh_.enterMesh(t);
   return false;
-}
-
-// The boundary loop through \a start, following at each vertex its single outgoing
-// boundary edge (as its mesh triangle traverses it). False if a vertex on the way has
-// none or several (a pinch), or the walk does not come back.
-bool
-Mesher::traceLoopFrom(SampleIndex start, std::vector<SampleIndex>& loop) const
-{
-  loop.clear();
-  std::vector<std::uint32_t> on_edge;
-  SampleIndex v = start;
-  for (std::size_t steps = 0; steps <= n_; ++steps) {
-    SampleIndex next = kNoSample;
-    int outgoing = 0;
-    forEachAround(v, [&](std::uint32_t t) {
-      if (state_[t] != kInMesh)
-        return;
-      const TriangleIndices& o = oriented_[t];
-      for (int slot = 0; slot < 3; ++slot)
-        if (o[slot] == v) {
-          meshOnEdge(v, o[(slot + 1) % 3], on_edge);
-          if (on_edge.size() == 1) {
-            next = o[(slot + 1) % 3];
-            ++outgoing;
-          }
-        }
-    });
-    if (outgoing != 1)
-      return false;
-    loop.push_back(v);
-    v = next;
-    if (v == start)
-      return loop.size() >= 3;
-  }
-  return false;
-}
-
-double
-Mesher::area(const std::vector<std::uint32_t>& triangles) const
-{
-  double total = 0;
-  for (const std::uint32_t t : triangles)
-    total += 0.5 * orientedNormal(oriented_[t]).norm();
-  return total;
-}
-
-// True when, with \a added in the mesh, every edge of the loop and of the added
-// triangles has two triangles, every vertex involved a single fan, and no added
-// triangle intersects the surface around the hole.
-bool
-Mesher::closes(const std::vector<SampleIndex>& loop,
-               const std::vector<std::uint32_t>& added)
-{
-  std::vector<std::uint32_t> on_edge;
-  for (std::size_t k = 0; k < loop.size(); ++k) {
-    meshOnEdge(loop[k], loop[(k + 1) % loop.size()], on_edge);
-    if (on_edge.size() != 2)
-      return false;
-  }
-  for (const std::uint32_t t : added) {
-    const TriangleIndices& o = oriented_[t];
-    for (int k = 0; k < 3; ++k) {
-      meshOnEdge(o[k], o[(k + 1) % 3], on_edge);
-      if (on_edge.size() != 2 || traverses(on_edge[0], o[k], o[(k + 1) % 3]) ==
-                                     traverses(on_edge[1], o[k], o[(k + 1) % 3]))
-        return false;
-      if (countFans(o[k]) != 1)
-        return false;
-    }
-  }
-  // Last: the exact intersection tests cost the most.
-  return !intersectsSurface(added);
-}
-
-// Whether a triangle of \a added (already in the mesh) intersects another mesh triangle
-// near it: those at the vertices of the added triangles and one ring around them.
-// Stitching fills are not restricted Delaunay triangles, so nothing else keeps them
-// from folding through the surface at sharp or thin parts.
-// Mesh triangles whose grid cells meet those of t.
-void
-Mesher::meshNear(const TriangleIndices& t, std::vector<std::uint32_t>& nearby) const
-{
-  const auto [low, high] = boundingBox(t);
-  meshNear(low, high, nearby);
-}
-
-// Enters the mesh triangles into the grid, once (enterMesh keeps it up to date).
-void
-Mesher::buildGrid()
-{
-  if (grid_)
-    return;
-  double edges = 0;
-  std::size_t count = 0;
-  for (std::uint32_t u = 0; u < pool_.size(); ++u)
-    if (state_[u] == kInMesh) {
-      edges += (points_[oriented_[u][0]] - points_[oriented_[u][1]]).norm();
-      ++count;
-    }
-  grid_.emplace(BoxGrid::cellSideFor(edges, count));
-  // Without room for its cells the map rehashes as it grows: a quarter of the time of
-  // this pass on PCL's table scene (about one cell for every four triangles there).
-  grid_->reserve(count / 2);
-  for (std::uint32_t u = 0; u < pool_.size(); ++u)
-    if (state_[u] == kInMesh)
-      grid_->insert(u, boundingBox(oriented_[u]));
-}
-
-// Mesh triangles whose grid cells meet those of the box [low, high], or whose own box
-// meets it: a superset of the triangles that can touch the box, sorted. (Callers only
-// keep the triangles that an exact test finds touching, so which superset it is does
-// not change their results.) Read-only: threads may query at once. Needs buildGrid().
-void
-Mesher::meshNear(const Vector& low, const Vector& high,
-                 std::vector<std::uint32_t>& nearby) const
-{
-  assert(grid_);
-  nearby.clear();
-  grid_->forEachNear(
-      Box{low, high}, [&](std::uint32_t u) { return boundingBox(oriented_[u]); },
-      [&](std::uint32_t u) {
-        if (state_[u] == kInMesh)
-          nearby.push_back(u);
-      });
-  std::sort(nearby.begin(), nearby.end());
-  nearby.erase(std::unique(nearby.begin(), nearby.end()), nearby.end());
-}
-
-// Whether mesh triangle t crosses another mesh triangle.
-bool
-Mesher::crossesMesh(std::uint32_t t)
-{
-  buildGrid();
-  meshNear(oriented_[t], near_);
-  for (const std::uint32_t u : near_)
-    if (u != t && trianglesIntersect(points_, oriented_[t], oriented_[u]))
-      return true;
-  return false;
-}
-
-bool
-Mesher::intersectsSurface(const std::vector<std::uint32_t>& added)
-{
-  for (const std::uint32_t t : added)
-    if (crossesMesh(t))
-      return true;
-  return false;
-}
-
-void
-Mesher::undo(const std::vector<std::uint32_t>& added)
-{
-  for (const std::uint32_t t : added)
-    leaveMesh(t);
 }
 
 // The least-area fill of the loop (fillLoopByLeastArea), using no diagonal that is an
@@ -1456,21 +1025,20 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
     // The loop of a lone triangle: its only fill is the same triangle again, which
     // would make a two-sided, zero-volume component. (A longer loop's fill triangles
     // each have a new diagonal, so none of them can be a mesh triangle.)
-    meshOnEdge(loop[0], loop[1], on_edge);
+    mesh_.meshOnEdge(loop[0], loop[1], on_edge);
     for (const std::uint32_t u : on_edge)
-      if (contains(u, loop[2]))
+      if (mesh_.contains(u, loop[2]))
         return false;
   }
   // Every fill triangle lies in the loop's bounding box: gather the mesh there once,
   // rather than for each of the O(m^3) candidates.
-  const auto [low, high] = boundingBox(loop);
-  buildGrid();
-  meshNear(low, high, near_);
+  mesh_.buildGrid();
+  mesh_.meshNear(mesh_.boundingBox(loop), near_);
   obstacles_.clear();
   for (const std::uint32_t u : near_)
-    obstacles_.push_back(oriented_[u]);
+    obstacles_.push_back(mesh_.oriented(u));
   const auto is_edge = [&](SampleIndex a, SampleIndex b) {
-    meshOnEdge(a, b, on_edge);
+    mesh_.meshOnEdge(a, b, on_edge);
     return !on_edge.empty();
   };
   const bool found = detail::fillLoopByLeastArea(points_, loop, is_edge, obstacles_,
@@ -1478,44 +1046,6 @@ Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
   for (std::uint32_t& blocker : blockers) // positions in near_, sorted as near_ is
     blocker = near_[blocker];
   return found;
-}
-
-std::size_t
-Mesher::labelFans(SampleIndex v, std::vector<std::uint32_t>& fan,
-                  std::vector<std::uint32_t>& label) const
-{
-  fan.clear();
-  forEachAround(v, [&](std::uint32_t t) {
-    if (state_[t] == kInMesh)
-      fan.push_back(t);
-  });
-  // Union-find: triangles sharing an edge (v, w) belong to the same fan.
-  label.resize(fan.size());
-  std::iota(label.begin(), label.end(), 0u);
-  const auto find = [&](std::uint32_t i) {
-    while (label[i] != i)
-      i = label[i] = label[label[i]];
-    return i;
-  };
-  for (std::size_t i = 0; i < fan.size(); ++i)
-    for (std::size_t j = i + 1; j < fan.size(); ++j)
-      for (const SampleIndex w : pool_[fan[i]])
-        if (w != v && contains(fan[j], w))
-          label[find(static_cast<std::uint32_t>(i))] =
-              find(static_cast<std::uint32_t>(j));
-  std::size_t fans = 0;
-  for (std::size_t i = 0; i < fan.size(); ++i) {
-    label[i] = find(static_cast<std::uint32_t>(i));
-    fans += label[i] == i;
-  }
-  return fans;
-}
-
-std::size_t
-Mesher::countFans(SampleIndex v) const
-{
-  std::vector<std::uint32_t> fan, label;
-  return labelFans(v, fan, label);
 }
 
 // Samples left in no triangle although they lie on the surface (a hole grown over
@@ -1532,14 +1062,14 @@ Mesher::insertUnusedSamples()
   std::vector<std::uint32_t> nearby_edge;
   std::size_t inserted = 0;
   for (SampleIndex v = 0; v < n_; ++v) {
-    if (mesh_degree_[v] != 0 || voronoi_.representative(v) != v || !(spacing_[v] > 0))
+    if (mesh_.meshDegree(v) != 0 || voronoi_.representative(v) != v || !(spacing_[v] > 0))
       continue;
     // The mesh triangles at its Delaunay neighbours.
     voronoi_.delaunayNeighbours(v, neighbours);
     nearby.clear();
     for (const SampleIndex w : neighbours)
-      forEachAround(w, [&](std::uint32_t t) {
-        if (state_[t] == kInMesh)
+      mesh_.forEachAround(w, [&](std::uint32_t t) {
+        if (mesh_.inMesh(t))
           nearby.push_back(t);
       });
     std::sort(nearby.begin(), nearby.end());
@@ -1557,7 +1087,7 @@ Mesher::insertUnusedSamples()
     std::uint32_t best = 0;
     int best_edge = -1; // -1: inside the triangle; k: on its edge k -> k + 1
     for (const std::uint32_t t : nearby) {
-      const TriangleIndices& o = oriented_[t];
+      const TriangleIndices& o = mesh_.oriented(t);
       const Vector a = points_[o[0]], b = points_[o[1]], c = points_[o[2]];
       const Vector normal = (b - a).cross(c - a);
       const double twice_area = normal.norm();
@@ -1590,7 +1120,7 @@ Mesher::insertUnusedSamples()
     }
     if (!std::isfinite(best_distance))
       continue;
-    const TriangleIndices o = oriented_[best];
+    const TriangleIndices o = mesh_.oriented(best);
     std::vector<std::uint32_t> replaced = {best};
     if (best_edge < 0) {
       splits = {{o[0], o[1], v}, {o[1], o[2], v}, {o[2], o[0], v}};
@@ -1598,12 +1128,12 @@ Mesher::insertUnusedSamples()
     else {
       const SampleIndex e0 = o[best_edge], e1 = o[(best_edge + 1) % 3];
       const SampleIndex apex_here = o[(best_edge + 2) % 3];
-      meshOnEdge(e0, e1, nearby_edge);
+      mesh_.meshOnEdge(e0, e1, nearby_edge);
       if (nearby_edge.size() != 2)
         continue;
       const std::uint32_t other =
           nearby_edge[0] == best ? nearby_edge[1] : nearby_edge[0];
-      const SampleIndex apex_there = apex(other, e0, e1);
+      const SampleIndex apex_there = mesh_.apex(other, e0, e1);
       replaced.push_back(other);
       // best traverses e0 -> e1, other e1 -> e0; keep both orientations.
       splits = {{e0, v, apex_here},
@@ -1612,9 +1142,9 @@ Mesher::insertUnusedSamples()
                 {v, e0, apex_there}};
     }
     // Most nearby triangles are apart from every split, which the boxes tell first.
-    Box splits_box = boundingBox(splits[0]);
+    Box splits_box = mesh_.boundingBox(splits[0]);
     for (const TriangleIndices& split : splits) {
-      const Box box = boundingBox(split);
+      const Box box = mesh_.boundingBox(split);
       splits_box = {splits_box.low.cwiseMin(box.low), splits_box.high.cwiseMax(box.high)};
     }
     bool crossing = false;
@@ -1622,10 +1152,10 @@ Mesher::insertUnusedSamples()
       if (crossing)
         break;
       if (std::find(replaced.begin(), replaced.end(), t) != replaced.end() ||
-          boxesApart(boundingBox(oriented_[t]), splits_box))
+          boxesApart(mesh_.boundingBox(mesh_.oriented(t)), splits_box))
         continue;
       for (const TriangleIndices& split : splits)
-        if (trianglesIntersect(points_, split, oriented_[t])) {
+        if (trianglesIntersect(points_, split, mesh_.oriented(t))) {
           crossing = true;
           break;
         }
@@ -1633,10 +1163,10 @@ Mesher::insertUnusedSamples()
     if (crossing)
       continue;
     for (const std::uint32_t t : replaced)
-      leaveMesh(t);
+      mesh_.leaveMesh(t);
     for (const TriangleIndices& split : splits) {
-      addToPool(split, kPolygonGroup);
-      enterMesh(static_cast<std::uint32_t>(pool_.size() - 1));
+      mesh_.addToPool(split, kPolygonGroup);
+      mesh_.enterMesh(static_cast<std::uint32_t>(mesh_.poolSize() - 1));
     }
     ++inserted;
   }
@@ -1658,11 +1188,11 @@ Mesher::findCrossingsBySuspectGrid(
 {
   double edges = 0;
   for (const std::uint32_t t : suspects)
-    edges += (points_[oriented_[t][0]] - points_[oriented_[t][1]]).norm();
+    edges += (points_[mesh_.oriented(t)[0]] - points_[mesh_.oriented(t)[1]]).norm();
   BoxGrid grid(BoxGrid::cellSideFor(edges, suspects.size())); // of suspect positions
   std::vector<Box> boxes(suspects.size());
   for (std::uint32_t i = 0; i < suspects.size(); ++i) {
-    boxes[i] = boundingBox(oriented_[suspects[i]]);
+    boxes[i] = mesh_.boundingBox(mesh_.oriented(suspects[i]));
     grid.insert(i, boxes[i]);
   }
 
@@ -1671,9 +1201,9 @@ Mesher::findCrossingsBySuspectGrid(
   const auto ask = [&](const tbb::blocked_range<std::uint32_t>& range) {
     std::vector<Pair>& pairs = found.local();
     for (std::uint32_t u = range.begin(); u != range.end(); ++u) {
-      if (state_[u] != kInMesh)
+      if (!mesh_.inMesh(u))
         continue;
-      const Box box = boundingBox(oriented_[u]);
+      const Box box = mesh_.boundingBox(mesh_.oriented(u));
       grid.forEachOverlapping(
           box, [&](std::uint32_t i) -> const Box& { return boxes[i]; },
           [&](std::uint32_t i) {
@@ -1684,7 +1214,7 @@ Mesher::findCrossingsBySuspectGrid(
   };
   detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
     tbb::parallel_for(tbb::blocked_range<std::uint32_t>(
-                          0, static_cast<std::uint32_t>(pool_.size()), 4096),
+                          0, static_cast<std::uint32_t>(mesh_.poolSize()), 4096),
                       ask);
   });
   std::vector<Pair> pairs;
@@ -1708,10 +1238,10 @@ Mesher::removeCrossings()
 {
   const std::vector<std::uint8_t>& boundary = report_.boundary_samples;
   std::vector<std::uint32_t> suspects;
-  std::vector<std::uint8_t> is_suspect(pool_.size(), 0);
-  for (std::uint32_t t = 0; t < pool_.size(); ++t) {
-    const TriangleIndices& o = oriented_[t];
-    if (state_[t] == kInMesh && (group_[t] != kCoconeGroup || boundary[o[0]] ||
+  std::vector<std::uint8_t> is_suspect(mesh_.poolSize(), 0);
+  for (std::uint32_t t = 0; t < mesh_.poolSize(); ++t) {
+    const TriangleIndices& o = mesh_.oriented(t);
+    if (mesh_.inMesh(t) && (mesh_.group(t) != kCoconeGroup || boundary[o[0]] ||
                                  boundary[o[1]] || boundary[o[2]])) {
       suspects.push_back(t);
       is_suspect[t] = 1;
@@ -1734,19 +1264,19 @@ Mesher::removeCrossings()
     // Most are apart, which their boxes tell without the call (the exact test starts
     // with the same strict comparison).
     return (u > t || !is_suspect[u]) && !boxesApart(u_box, t_box) &&
-           trianglesIntersect(points_, oriented_[t], oriented_[u]);
+           trianglesIntersect(points_, mesh_.oriented(t), mesh_.oriented(u));
   };
-  if (grid_) {
+  if (mesh_.hasGrid()) {
     // The fills built the mesh's grid: each suspect asks it.
     tbb::enumerable_thread_specific<std::vector<std::uint32_t> > scratch;
     const auto findCrossings = [&](const tbb::blocked_range<std::size_t>& range) {
       std::vector<std::uint32_t>& nearby = scratch.local();
       for (std::size_t i = range.begin(); i != range.end(); ++i) {
         const std::uint32_t t = suspects[i];
-        const Box box = boundingBox(oriented_[t]);
-        meshNear(box.low, box.high, nearby);
+        const Box box = mesh_.boundingBox(mesh_.oriented(t));
+        mesh_.meshNear(box, nearby);
         for (const std::uint32_t u : nearby)
-          if (crosses(t, box, u, boundingBox(oriented_[u])))
+          if (crosses(t, box, u, mesh_.boundingBox(mesh_.oriented(u))))
             crossing[i].push_back(u);
       }
     };
@@ -1766,13 +1296,13 @@ Mesher::removeCrossings()
   std::vector<std::uint32_t> gone;
   for (std::size_t i = 0; i < suspects.size(); ++i) {
     const std::uint32_t t = suspects[i];
-    if (state_[t] != kInMesh)
+    if (!mesh_.inMesh(t))
       continue;
     for (const std::uint32_t u : crossing[i]) {
-      if (state_[u] != kInMesh)
+      if (!mesh_.inMesh(u))
         continue;
       const std::uint32_t drop = std::max(t, u);
-      leaveMesh(drop);
+      mesh_.leaveMesh(drop);
       gone.push_back(drop);
       if (drop == t)
         break;
@@ -1780,7 +1310,7 @@ Mesher::removeCrossings()
   }
   // A removal can leave a vertex with two fans.
   for (const std::uint32_t t : gone)
-    pinched_.insert(pinched_.end(), oriented_[t].begin(), oriented_[t].end());
+    pinched_.insert(pinched_.end(), mesh_.oriented(t).begin(), mesh_.oriented(t).end());
   resolvePinches();
   report_.crossing_triangles = gone.size();
   return gone.size();
@@ -1795,32 +1325,32 @@ Mesher::orientClosedComponentsOutward()
   // through shared edges, found without looking up a single edge.
   detail::DisjointSets components(n_);
   const auto find = [&](SampleIndex v) { return components.find(v); };
-  for (std::uint32_t t = 0; t < pool_.size(); ++t)
-    if (state_[t] == kInMesh) {
-      components.unite(oriented_[t][0], oriented_[t][1]);
-      components.unite(oriented_[t][0], oriented_[t][2]);
+  for (std::uint32_t t = 0; t < mesh_.poolSize(); ++t)
+    if (mesh_.inMesh(t)) {
+      components.unite(mesh_.oriented(t)[0], mesh_.oriented(t)[1]);
+      components.unite(mesh_.oriented(t)[0], mesh_.oriented(t)[2]);
     }
   // Signed volume per component (divergence theorem, up to a factor 6), summed in
   // triangle order.
   std::vector<double> volume(n_, 0);
-  for (std::uint32_t t = 0; t < pool_.size(); ++t)
-    if (state_[t] == kInMesh) {
-      const TriangleIndices& o = oriented_[t];
+  for (std::uint32_t t = 0; t < mesh_.poolSize(); ++t)
+    if (mesh_.inMesh(t)) {
+      const TriangleIndices& o = mesh_.oriented(t);
       volume[find(o[0])] += points_[o[0]].dot(points_[o[1]].cross(points_[o[2]]));
     }
   // A component with a boundary edge is open: its inside is undefined.
   std::vector<std::uint8_t> open(n_, 0);
   std::vector<std::uint32_t> on_edge;
-  for (const auto& [a, b] : maybe_open_) {
-    meshOnEdge(a, b, on_edge);
+  for (const auto& [a, b] : mesh_.maybeOpen()) {
+    mesh_.meshOnEdge(a, b, on_edge);
     if (on_edge.size() == 1)
       open[find(a)] = 1;
   }
-  for (std::uint32_t t = 0; t < pool_.size(); ++t)
-    if (state_[t] == kInMesh) {
-      const SampleIndex root = find(oriented_[t][0]);
+  for (std::uint32_t t = 0; t < mesh_.poolSize(); ++t)
+    if (mesh_.inMesh(t)) {
+      const SampleIndex root = find(mesh_.oriented(t)[0]);
       if (!open[root] && volume[root] < 0)
-        std::swap(oriented_[t][1], oriented_[t][2]);
+        mesh_.flip(t);
     }
 }
 
@@ -1862,8 +1392,6 @@ Mesher::run(std::vector<TriangleIndices>& output)
   else {
     report_.boundary_samples.assign(n_, 0);
   }
-  mesh_degree_.assign(n_, 0);
-  fan_normal_.assign(n_, Vector::Zero());
   lap(timings.boundary, "boundary samples");
 
   measureSpacing();
@@ -1882,26 +1410,26 @@ Mesher::run(std::vector<TriangleIndices>& output)
   std::vector<std::vector<SampleIndex> > tried; // vertex sets of the loops offered
   if (parameters_.stitch_holes)
     stitchLoops(tried);
-  log_changes_ = true;
+  mesh_.logChanges(true);
   insertUnusedSamples();
   removeCrossings();
   // The holes opened by this round's growths get one more round; what the last round
   // opens stays open. A round after no change would offer nothing.
-  if (parameters_.stitch_holes && !changed_.empty() && stitchLoops(tried) > 0 &&
-      !changed_.empty())
+  if (parameters_.stitch_holes && mesh_.hasChanges() && stitchLoops(tried) > 0 &&
+      mesh_.hasChanges())
     stitchLoops(tried);
-  log_changes_ = false;
-  changed_.clear();
-  report_.open_loops = traceLoops();
+  mesh_.logChanges(false);
+  mesh_.clearChanges();
+  report_.open_loops = mesh_.traceLoops();
   lap(timings.stitching, "stitching");
   orientClosedComponentsOutward();
 
   output.clear();
-  for (std::uint32_t t = 0; t < pool_.size(); ++t)
-    if (state_[t] == kInMesh)
-      output.push_back(oriented_[t]);
+  for (std::uint32_t t = 0; t < mesh_.poolSize(); ++t)
+    if (mesh_.inMesh(t))
+      output.push_back(mesh_.oriented(t));
   for (SampleIndex v = 0; v < n_; ++v)
-    if (mesh_degree_[v] == 0)
+    if (mesh_.meshDegree(v) == 0)
       report_.unused_samples.push_back(v);
   lap(timings.finishing, "orientation and loops");
 }
