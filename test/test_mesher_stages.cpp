@@ -2,10 +2,14 @@
 // The mesher's parts one by one (src/reconstruction/), on small hand-made or generated
 // inputs: the box grid, the least-area fill, and each stage of reconstructSurface.
 #include "reconstruction/box_grid.h"
+#include "reconstruction/candidates.h"
 #include "reconstruction/least_area_fill.h"
 #include "reconstruction/mesh_state.h"
 
 #include <pcl/cocone/core/mesh_geometry.h>
+#include <pcl/cocone/core/voronoi_cocone.h>
+
+#include <support/shapes.h>
 
 #include <gtest/gtest.h>
 
@@ -31,6 +35,9 @@ using pcl::cocone::detail::MeshState;
 using pcl::cocone::detail::kCoconeGroup;
 using pcl::cocone::detail::kPolygonGroup;
 using pcl::cocone::SampleIndex;
+using pcl::cocone::VoronoiCocone;
+using pcl::cocone::detail::kCandidate;
+using pcl::cocone::detail::kRejected;
 using pcl::cocone::TriangleIndices;
 using Vector = Eigen::Vector3d;
 using Points = std::vector<Vector>;
@@ -180,6 +187,156 @@ TEST(MeshState, EdgesSeeLateTrianglesAndFansSplitAtPinches)
   EXPECT_FALSE(mesh.traverses(first, 2, 1));
   EXPECT_EQ(mesh.apex(first, 2, 0), 1u);
   EXPECT_DOUBLE_EQ(mesh.area({first, late}), 1);
+}
+
+/** The diagram of \a points; fails the test when it cannot be computed. */
+void
+computeDiagram(const Points& points, VoronoiCocone& voronoi)
+{
+  ASSERT_EQ(voronoi.compute(points), pcl::cocone::Status::ok);
+}
+
+// --- candidates and lids ---------------------------------------------------------
+
+TEST(Candidates, EveryVoterMustMarkATriangle)
+{
+  // A coarse torus: some triangles are marked by only some of their vertices.
+  const Points points = pcl::cocone::test::sampleTorus(500, 4).points;
+  VoronoiCocone voronoi;
+  computeDiagram(points, voronoi);
+  const auto& marked = voronoi.markedTriangles();
+  const auto marked_by_all = [](const pcl::cocone::MarkedTriangle& t) {
+    return t.isMarkedBy(0) && t.isMarkedBy(1) && t.isMarkedBy(2);
+  };
+
+  // No boundary sample: the triangles marked by all three vertices, covering the
+  // samples.
+  std::vector<std::uint8_t> boundary(points.size(), 0);
+  MeshState mesh(voronoi.centeredPoints());
+  const std::size_t count = pcl::cocone::detail::collectCandidates(voronoi, boundary, mesh);
+  EXPECT_EQ(count, mesh.poolSize());
+  EXPECT_EQ(count, static_cast<std::size_t>(
+                       std::count_if(marked.begin(), marked.end(), marked_by_all)));
+  EXPECT_LT(count, marked.size()); // some triangles are marked by fewer
+  EXPECT_EQ(mesh.groupCount(), 1u);
+  std::vector<std::uint8_t> covered(points.size(), 0);
+  for (std::uint32_t t = 0; t < mesh.poolSize(); ++t) {
+    EXPECT_EQ(mesh.state(t), kCandidate);
+    for (const SampleIndex v : mesh.triangle(t))
+      covered[v] = 1;
+  }
+  EXPECT_EQ(std::count(covered.begin(), covered.end(), 1),
+            static_cast<std::ptrdiff_t>(points.size()));
+
+  // A boundary sample casts no vote: a triangle that only its two other vertices mark
+  // becomes a candidate, and one whose vertices are all boundary samples is none.
+  std::size_t two_voters = marked.size();
+  int not_voting = 0;
+  for (std::size_t t = 0; t < marked.size() && two_voters == marked.size(); ++t)
+    for (int k = 0; k < 3; ++k)
+      if (!marked[t].isMarkedBy(k) && marked[t].isMarkedBy((k + 1) % 3) &&
+          marked[t].isMarkedBy((k + 2) % 3)) {
+        two_voters = t;
+        not_voting = k;
+      }
+  ASSERT_LT(two_voters, marked.size());
+  const SampleIndex a = marked[two_voters].vertex[(not_voting + 1) % 3],
+                    b = marked[two_voters].vertex[(not_voting + 2) % 3],
+                    c = marked[two_voters].vertex[not_voting];
+  boundary[c] = 1;
+  MeshState with_boundary(voronoi.centeredPoints());
+  pcl::cocone::detail::collectCandidates(voronoi, boundary, with_boundary);
+  bool found = false;
+  for (std::uint32_t t = 0; t < with_boundary.poolSize(); ++t) {
+    const TriangleIndices& tri = with_boundary.triangle(t);
+    found = found || (with_boundary.contains(t, a) && with_boundary.contains(t, b) &&
+                      with_boundary.contains(t, c));
+    EXPECT_FALSE(boundary[tri[0]] && boundary[tri[1]] && boundary[tri[2]]);
+  }
+  EXPECT_TRUE(found);
+  boundary.assign(points.size(), 1);
+  MeshState all_boundary(voronoi.centeredPoints());
+  EXPECT_EQ(pcl::cocone::detail::collectCandidates(voronoi, boundary, all_boundary), 0u);
+}
+
+/** A unit grid of 11 x 11 samples in the plane z = 0, its squares split along the
+ * diagonal (i, j) (i + 1, j + 1), with a 6 x 6 hole [2, 8]^2 covered by a lid of two
+ * triangles (the last two of the pool). */
+struct LiddedGrid
+{
+  Points points;
+  std::vector<TriangleIndices> triangles;
+
+  static SampleIndex
+  at(int i, int j)
+  {
+    return static_cast<SampleIndex>(11 * j + i);
+  }
+
+  LiddedGrid()
+  {
+    for (int j = 0; j <= 10; ++j)
+      for (int i = 0; i <= 10; ++i)
+        points.emplace_back(i, j, 0);
+    for (int j = 0; j < 10; ++j)
+      for (int i = 0; i < 10; ++i) {
+        if (i >= 2 && i < 8 && j >= 2 && j < 8)
+          continue; // the hole
+        triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+        triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+      }
+    triangles.push_back({at(2, 2), at(8, 2), at(8, 8)});
+    triangles.push_back({at(2, 2), at(8, 8), at(2, 8)});
+  }
+
+  /** Runs removeLids on a pool of the triangles; returns the states. */
+  std::vector<std::uint8_t>
+  removeLids(const std::vector<std::uint8_t>& boundary, double true_boundary_ratio,
+             std::size_t& removed) const
+  {
+    MeshState mesh(points);
+    for (const TriangleIndices& t : triangles)
+      mesh.addToPool(t, kCoconeGroup);
+    mesh.closeGroup();
+    mesh.rebuildIncidence();
+    const std::vector<double> spacing(points.size(), 1.0);
+    removed = pcl::cocone::detail::removeLids(mesh, spacing, boundary,
+                                              true_boundary_ratio, 1);
+    std::vector<std::uint8_t> states;
+    for (std::uint32_t t = 0; t < mesh.poolSize(); ++t)
+      states.push_back(mesh.state(t));
+    return states;
+  }
+};
+
+// The lid is 3 spacings in size (twice its area over its perimeter): a true boundary
+// at ratio 2, not at ratio 4. It goes only when a boundary sample is on it or shares a
+// candidate with one of its vertices.
+TEST(Candidates, LidsOverTrueHolesNearBoundarySamplesAreRemoved)
+{
+  const LiddedGrid grid;
+  const std::size_t lid_first = grid.triangles.size() - 2;
+  const auto lid_states = [&](const std::vector<std::uint8_t>& states) {
+    EXPECT_EQ(std::count(states.begin(), states.begin() + lid_first, kCandidate),
+              static_cast<std::ptrdiff_t>(lid_first)); // the grid stays
+    return std::vector<std::uint8_t>(states.begin() + lid_first, states.end());
+  };
+  const std::vector<std::uint8_t> kept = {kCandidate, kCandidate},
+                                   rejected = {kRejected, kRejected};
+  std::vector<std::uint8_t> boundary(grid.points.size(), 0);
+  std::size_t removed = 0;
+  EXPECT_EQ(lid_states(grid.removeLids(boundary, 2, removed)), kept);
+  EXPECT_EQ(removed, 0u);
+
+  boundary[LiddedGrid::at(0, 0)] = 1; // far from the lid: a sparse flat region
+  EXPECT_EQ(lid_states(grid.removeLids(boundary, 2, removed)), kept);
+  EXPECT_EQ(removed, 0u);
+
+  boundary[LiddedGrid::at(1, 1)] = 1; // shares a grid triangle with the lid's corner
+  EXPECT_EQ(lid_states(grid.removeLids(boundary, 2, removed)), rejected);
+  EXPECT_EQ(removed, 2u);
+  EXPECT_EQ(lid_states(grid.removeLids(boundary, 4, removed)), kept); // a small hole
+  EXPECT_EQ(removed, 0u);
 }
 
 // --- box grid --------------------------------------------------------------------

@@ -2,7 +2,9 @@
 #include "common/disjoint_sets.h"
 #include "common/parallel.h"
 #include "reconstruction/box_grid.h"
+#include "reconstruction/candidates.h"
 #include "reconstruction/least_area_fill.h"
+#include "reconstruction/local_spacing.h"
 #include "reconstruction/mesh_state.h"
 
 #include <pcl/cocone/core/reconstruction.h>
@@ -53,16 +55,6 @@ constexpr std::size_t kLargestPolygonFill = 60;
 // How far (in local spacings) an unused sample may lie from the mesh to be put back.
 constexpr double kInsertionReach = 1.0;
 
-double
-circumradius(const Vector& a, const Vector& b, const Vector& c)
-{
-  const double ab = (b - a).norm(), bc = (c - b).norm(), ca = (a - c).norm();
-  const double area2 = (b - a).cross(c - a).norm(); // twice the area
-  if (!(area2 > 0))
-    return std::numeric_limits<double>::infinity();
-  return ab * bc * ca / (2 * area2);
-}
-
 /** Extracts the surface. The pool holds every triangle that may become part of it: the
  * cocone candidates (group 0) and, later, the Delaunay triangles offered to each hole
  * (group k for the k-th hole). */
@@ -79,11 +71,15 @@ public:
 
 private:
   // --- stages ---------------------------------------------------------------------
-  void measureSpacing();
-  double typicalSpacing(const std::vector<SampleIndex>& samples) const;
-  bool isTrueBoundary(double area, double perimeter, double spacing) const;
-  void collectCandidates();
-  void removeLids();
+  double typicalSpacing(const std::vector<SampleIndex>& samples) const
+  {
+    return detail::typicalSpacing(spacing_, samples);
+  }
+  bool isTrueBoundary(double area, double perimeter, double spacing) const
+  {
+    return detail::isTrueBoundary(area, perimeter, spacing,
+                                  parameters_.true_boundary_ratio);
+  }
   bool fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
                                 std::vector<TriangleIndices>& fill,
                                 std::vector<std::uint32_t>& blockers);
@@ -145,173 +141,6 @@ private:
   // closed by the time they are taken) skip the look-up that would find out.
   std::vector<std::uint8_t> closed_edges_;
 };
-
-// ---------------------------------------------------------------------------------
-// Local spacing: the distance from a sample to its third nearest neighbour among the
-// samples it shares a marked triangle with. On an evenly spread sample it is about
-// 1.1 sqrt(area / n); unlike the cocone radius it does not grow at the rim of a hole.
-void
-Mesher::measureSpacing()
-{
-  const std::vector<MarkedTriangle>& marked = voronoi_.markedTriangles();
-  spacing_.assign(n_, 0);
-  detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
-    tbb::parallel_for(
-        tbb::blocked_range<SampleIndex>(0, static_cast<SampleIndex>(n_), 1024),
-        [&](const tbb::blocked_range<SampleIndex>& range) {
-          std::vector<double> distances;
-          for (SampleIndex p = range.begin(); p != range.end(); ++p) {
-            distances.clear();
-            for (const std::uint32_t t : voronoi_.trianglesAround(p))
-              for (const SampleIndex v : marked[t].vertex)
-                if (v != p)
-                  distances.push_back((points_[v] - points_[p]).squaredNorm());
-            std::sort(distances.begin(), distances.end());
-            distances.erase(std::unique(distances.begin(), distances.end()),
-                            distances.end());
-            if (!distances.empty())
-              spacing_[p] =
-                  std::sqrt(distances[std::min<std::size_t>(distances.size(), 3) - 1]);
-          }
-        });
-  });
-}
-
-double
-Mesher::typicalSpacing(const std::vector<SampleIndex>& samples) const
-{
-  std::vector<double> values;
-  values.reserve(samples.size());
-  for (const SampleIndex v : samples)
-    if (spacing_[v] > 0)
-      values.push_back(spacing_[v]);
-  if (values.empty())
-    return 0;
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return values[values.size() / 2];
-}
-
-// The size of a hole or of a patch: twice its area over its perimeter, which is the
-// radius for a disc and half the width for a long strip. A hole is a true boundary
-// when this radius exceeds true_boundary_ratio local spacings (paper 3.4.2 compares the
-// circumradii of the triangles that would fill it with those of its neighbours, but on
-// scans the fills of true holes are fans of long, thin triangles whose circumradii are
-// no larger than those of many fills of small gaps; this measure separates them).
-bool
-Mesher::isTrueBoundary(double area, double perimeter, double spacing) const
-{
-  return perimeter > 0 &&
-         2 * area / perimeter > parameters_.true_boundary_ratio * spacing;
-}
-
-// ---------------------------------------------------------------------------------
-// Candidates: boundary samples cast no vote. The original COCONE keeps a triangle
-// marked by all three vertices, which caps open surfaces with a lid or, after pruning,
-// lets them be eaten away; a union over the samples' marks (a literal reading of the
-// paper's pseudo-code) adds many non-manifold edges. So a triangle is a candidate when
-// every non-boundary vertex marks it, and it has one.
-void
-Mesher::collectCandidates()
-{
-  const std::vector<std::uint8_t>& boundary = report_.boundary_samples;
-  // Nearly every marked triangle of a well sampled surface is a candidate.
-  const std::size_t expected = voronoi_.markedTriangles().size();
-  mesh_.reservePool(expected);
-  for (const MarkedTriangle& t : voronoi_.markedTriangles()) {
-    int voters = 0;
-    bool every_voter_marks = true;
-    for (int k = 0; k < 3; ++k) {
-      if (boundary[t.vertex[k]])
-        continue;
-      ++voters;
-      every_voter_marks = every_voter_marks && t.isMarkedBy(k);
-    }
-    if (voters > 0 && every_voter_marks)
-      mesh_.addToPool(t.vertex, kCoconeGroup);
-  }
-  report_.candidate_triangles = mesh_.poolSize();
-  mesh_.closeGroup();
-  mesh_.rebuildIncidence();
-}
-
-// Lids. A hole that is small against the local feature size leaves most samples on its
-// rim flat (BOUNDARY flags only a few of them), and their cocones choose Delaunay
-// triangles across it: the candidates cover the hole with a lid of triangles larger
-// than those of a sampled surface (whose circumradius stays below about 0.9 local
-// spacings). Oversized candidates are grouped into patches (connected through edges);
-// a patch as large as a true boundary (isTrueBoundary) that touches a boundary sample
-// or its neighbours is a lid and is removed, so the hole stays open. Large patches far
-// from any boundary sample are sparsely sampled flat regions (as in meshes decimated
-// adaptively) and stay. Measured on the Stanford bunny: without this step two of the
-// five holes of its base stay open, with it all five, and no other loop.
-void
-Mesher::removeLids()
-{
-  constexpr double kOversized = 1.25; // circumradius in local spacings
-  std::vector<std::uint8_t> oversized(mesh_.poolSize(), 0);
-  detail::runInArena(voronoi_.getNumberOfThreads(), [&] {
-    tbb::parallel_for(
-        tbb::blocked_range<std::uint32_t>(0, static_cast<std::uint32_t>(mesh_.poolSize()),
-                                          4096),
-        [&](const tbb::blocked_range<std::uint32_t>& range) {
-          for (std::uint32_t t = range.begin(); t != range.end(); ++t) {
-            const TriangleIndices& tri = mesh_.triangle(t);
-            const double local =
-                std::max({spacing_[tri[0]], spacing_[tri[1]], spacing_[tri[2]]});
-            oversized[t] = circumradius(points_[tri[0]], points_[tri[1]],
-                                        points_[tri[2]]) > kOversized * local;
-          }
-        });
-  });
-  // Boundary samples and the samples sharing a candidate with one.
-  const std::vector<std::uint8_t>& boundary = report_.boundary_samples;
-  std::vector<std::uint8_t> near_boundary(boundary);
-  for (std::uint32_t t = 0; t < mesh_.poolSize(); ++t) {
-    const TriangleIndices& tri = mesh_.triangle(t);
-    if (boundary[tri[0]] || boundary[tri[1]] || boundary[tri[2]])
-      for (const SampleIndex v : tri)
-        near_boundary[v] = 1;
-  }
-  std::vector<std::uint8_t> seen(mesh_.poolSize(), 0);
-  std::vector<std::uint32_t> patch, on_edge;
-  std::vector<SampleIndex> vertices;
-  for (std::uint32_t start = 0; start < mesh_.poolSize(); ++start) {
-    if (!oversized[start] || seen[start])
-      continue;
-    patch.assign(1, start);
-    seen[start] = 1;
-    double area = 0, perimeter = 0;
-    for (std::size_t head = 0; head < patch.size(); ++head) {
-      const TriangleIndices& tri = mesh_.triangle(patch[head]);
-      area += 0.5 * (points_[tri[1]] - points_[tri[0]])
-                        .cross(points_[tri[2]] - points_[tri[0]])
-                        .norm();
-      for (int k = 0; k < 3; ++k) {
-        const SampleIndex a = tri[k], b = tri[(k + 1) % 3];
-        mesh_.trianglesOnEdge(
-            a, b, [&](std::uint32_t s) { return oversized[s] != 0; }, on_edge);
-        if (on_edge.size() == 1)
-          perimeter += (points_[a] - points_[b]).norm();
-        for (const std::uint32_t s : on_edge)
-          if (!seen[s]) {
-            seen[s] = 1;
-            patch.push_back(s);
-          }
-      }
-    }
-    vertices.clear();
-    for (const std::uint32_t t : patch)
-      vertices.insert(vertices.end(), mesh_.triangle(t).begin(), mesh_.triangle(t).end());
-    if (!isTrueBoundary(area, perimeter, typicalSpacing(vertices)))
-      continue;
-    if (std::none_of(vertices.begin(), vertices.end(),
-                     [&](SampleIndex v) { return near_boundary[v] != 0; }))
-      continue; // a sparsely sampled flat region, not a hole
-    for (const std::uint32_t t : patch)
-      mesh_.reject(t);
-    report_.lid_triangles += patch.size();
-  }
-}
 
 // ---------------------------------------------------------------------------------
 // Pruning. An edge is sharp when, ordering its triangles by angle around it, two
@@ -1394,9 +1223,12 @@ Mesher::run(std::vector<TriangleIndices>& output)
   }
   lap(timings.boundary, "boundary samples");
 
-  measureSpacing();
-  collectCandidates();
-  removeLids();
+  spacing_ = detail::measureLocalSpacing(voronoi_);
+  report_.candidate_triangles =
+      detail::collectCandidates(voronoi_, report_.boundary_samples, mesh_);
+  report_.lid_triangles =
+      detail::removeLids(mesh_, spacing_, report_.boundary_samples,
+                         parameters_.true_boundary_ratio, voronoi_.getNumberOfThreads());
   lap(timings.candidates, "candidates and lids");
   report_.pruned_triangles = prune(kCoconeGroup);
   lap(timings.pruning, "pruning");
