@@ -5,6 +5,7 @@
 #include "reconstruction/candidates.h"
 #include "reconstruction/least_area_fill.h"
 #include "reconstruction/mesh_state.h"
+#include "reconstruction/prune.h"
 
 #include <pcl/cocone/core/mesh_geometry.h>
 #include <pcl/cocone/core/voronoi_cocone.h>
@@ -32,6 +33,7 @@ using pcl::cocone::detail::boxesApart;
 using pcl::cocone::detail::fillLoopByLeastArea;
 using pcl::cocone::detail::LeastAreaFillScratch;
 using pcl::cocone::detail::MeshState;
+using pcl::cocone::detail::Pruner;
 using pcl::cocone::detail::kCoconeGroup;
 using pcl::cocone::detail::kPolygonGroup;
 using pcl::cocone::SampleIndex;
@@ -337,6 +339,107 @@ TEST(Candidates, LidsOverTrueHolesNearBoundarySamplesAreRemoved)
   EXPECT_EQ(removed, 2u);
   EXPECT_EQ(lid_states(grid.removeLids(boundary, 4, removed)), kept); // a small hole
   EXPECT_EQ(removed, 0u);
+}
+
+// --- pruning --------------------------------------------------------------------
+
+/** The octahedron (triangles 0 to 7, group 0) with triangles added on its edge +x +z
+ * in the plane y = 0, outward: kFin on the edge (which has three triangles then),
+ * kStrip continuing kFin flat, and kFold folded back onto kStrip. */
+const TriangleIndices kFin = {0, 4, 6}, kStrip = {4, 6, 7}, kFold = {6, 7, 8};
+
+struct FinnedOctahedron
+{
+  static Points
+  finnedPoints()
+  {
+    Points points = octahedronPoints();
+    points.push_back({1.2, 0, 1.2});   // 6
+    points.push_back({0.3, 0, 2.0});   // 7
+    points.push_back({0.2, 0.5, 1.1}); // 8, above kStrip
+    return points;
+  }
+
+  const Points points = finnedPoints(); // before the mesh, which refers to them
+  MeshState mesh{points};
+  std::vector<std::uint8_t> boundary = std::vector<std::uint8_t>(points.size(), 0);
+
+  /** \a fins become triangles 8, 9, ... of group \a fin_group. */
+  explicit FinnedOctahedron(const std::vector<TriangleIndices>& fins,
+                            std::uint32_t fin_group = kCoconeGroup,
+                            bool octahedron_in_mesh = false)
+  {
+    for (const TriangleIndices& face : octahedronFaces())
+      mesh.addToPool(face, kCoconeGroup);
+    if (fin_group != kCoconeGroup)
+      mesh.closeGroup();
+    for (const TriangleIndices& fin : fins)
+      mesh.addToPool(fin, fin_group);
+    mesh.closeGroup();
+    mesh.rebuildIncidence();
+    if (octahedron_in_mesh)
+      for (std::uint32_t t = 0; t < 8; ++t)
+        mesh.enterMesh(t);
+  }
+
+  std::size_t
+  countCandidates(std::uint32_t first, std::uint32_t last) const
+  {
+    std::size_t count = 0;
+    for (std::uint32_t t = first; t < last; ++t)
+      count += mesh.state(t) == kCandidate;
+    return count;
+  }
+};
+
+// The edge +x +z holds three triangles and no fold (the fin halves the outer angle),
+// so only the fin's bare edges decide: it goes, and the octahedron, held everywhere by
+// pairs of triangles that do not fold, stays.
+TEST(Prune, FinOnAnEdgeWithThreeTrianglesGoes)
+{
+  FinnedOctahedron shape({kFin});
+  Pruner pruner(shape.mesh, shape.boundary, 1);
+  EXPECT_EQ(pruner.prune(kCoconeGroup), 1u);
+  EXPECT_EQ(shape.mesh.state(8), kRejected);
+  EXPECT_EQ(shape.countCandidates(0, 8), 8u);
+}
+
+TEST(Prune, TrianglesAtBoundarySamplesStayInTheCandidatesOnly)
+{
+  FinnedOctahedron candidates({kFin});
+  candidates.boundary[6] = 1;
+  EXPECT_EQ(Pruner(candidates.mesh, candidates.boundary, 1).prune(kCoconeGroup), 0u);
+  EXPECT_EQ(candidates.mesh.state(8), kCandidate);
+
+  // A hole's group (1) is pruned whatever the flags, against the mesh around it.
+  FinnedOctahedron hole({kFin}, 1, true);
+  hole.boundary[6] = 1;
+  Pruner pruner(hole.mesh, hole.boundary, 1);
+  EXPECT_EQ(pruner.prune(1), 1u);
+  EXPECT_EQ(hole.mesh.state(8), kRejected);
+}
+
+// A flat strip holds the fin. A fold at the strip's far edge goes, and which triangle
+// of the fold goes first decides the rest: the cascade runs from the last triangle of
+// the pool down, as a sequential run would.
+TEST(Prune, FoldsGoAndTheCascadeFollows)
+{
+  FinnedOctahedron strip({kFin, kStrip});
+  EXPECT_EQ(Pruner(strip.mesh, strip.boundary, 1).prune(kCoconeGroup), 0u);
+  EXPECT_EQ(strip.countCandidates(0, 10), 10u);
+
+  // The strip is judged first: it goes at the fold, the fin is bare then, and the
+  // folded triangle too.
+  FinnedOctahedron strip_first({kFin, kFold, kStrip});
+  EXPECT_EQ(Pruner(strip_first.mesh, strip_first.boundary, 1).prune(kCoconeGroup), 3u);
+  EXPECT_EQ(strip_first.countCandidates(0, 8), 8u);
+  EXPECT_EQ(strip_first.countCandidates(8, 11), 0u);
+
+  // The folded triangle is judged first: it goes, and the strip is flat again.
+  FinnedOctahedron fold_first({kFin, kStrip, kFold});
+  EXPECT_EQ(Pruner(fold_first.mesh, fold_first.boundary, 1).prune(kCoconeGroup), 1u);
+  EXPECT_EQ(fold_first.mesh.state(10), kRejected);
+  EXPECT_EQ(fold_first.countCandidates(0, 10), 10u);
 }
 
 // --- box grid --------------------------------------------------------------------
