@@ -6,10 +6,12 @@
 #include "reconstruction/least_area_fill.h"
 #include "reconstruction/mesh_state.h"
 #include "reconstruction/prune.h"
+#include "reconstruction/walk.h"
 
 #include <pcl/cocone/core/mesh_geometry.h>
 #include <pcl/cocone/core/voronoi_cocone.h>
 
+#include <support/mesh_checks.h>
 #include <support/shapes.h>
 
 #include <gtest/gtest.h>
@@ -20,6 +22,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <random>
 #include <set>
 #include <utility>
@@ -33,7 +36,9 @@ using pcl::cocone::detail::boxesApart;
 using pcl::cocone::detail::fillLoopByLeastArea;
 using pcl::cocone::detail::LeastAreaFillScratch;
 using pcl::cocone::detail::MeshState;
+using pcl::cocone::detail::PinchResolver;
 using pcl::cocone::detail::Pruner;
+using pcl::cocone::detail::Walker;
 using pcl::cocone::detail::kCoconeGroup;
 using pcl::cocone::detail::kPolygonGroup;
 using pcl::cocone::SampleIndex;
@@ -357,6 +362,7 @@ struct FinnedOctahedron
     points.push_back({1.2, 0, 1.2});   // 6
     points.push_back({0.3, 0, 2.0});   // 7
     points.push_back({0.2, 0.5, 1.1}); // 8, above kStrip
+    points.push_back({0.3, 0, 0.3});   // 9, inside, in the plane y = 0
     return points;
   }
 
@@ -440,6 +446,173 @@ TEST(Prune, FoldsGoAndTheCascadeFollows)
   EXPECT_EQ(Pruner(fold_first.mesh, fold_first.boundary, 1).prune(kCoconeGroup), 1u);
   EXPECT_EQ(fold_first.mesh.state(10), kRejected);
   EXPECT_EQ(fold_first.countCandidates(0, 10), 10u);
+}
+
+// --- walk and pinches -----------------------------------------------------------
+
+/** The first stages of the mesher on \a points, without boundary detection:
+ * candidates, pruning, the walk and pinch resolution. */
+struct Extraction
+{
+  VoronoiCocone voronoi;
+  std::unique_ptr<MeshState> mesh;
+  std::vector<std::uint8_t> boundary;
+  std::size_t walked = 0, pinch_removed = 0;
+
+  explicit Extraction(const Points& points)
+  {
+    computeDiagram(points, voronoi);
+    mesh = std::make_unique<MeshState>(voronoi.centeredPoints());
+    boundary.assign(points.size(), 0);
+    pcl::cocone::detail::collectCandidates(voronoi, boundary, *mesh);
+    Pruner(*mesh, boundary, 0).prune(kCoconeGroup);
+    PinchResolver pinches(*mesh);
+    walked = Walker(*mesh, pinches, 0).walkAll();
+    pinch_removed = pinches.resolve();
+  }
+};
+
+TEST(Walk, SampledSphereGivesAClosedManifoldFacingOutward)
+{
+  const Points points = pcl::cocone::test::sampleSphere(1500, 6).points;
+  const Extraction extraction(points);
+  const std::vector<TriangleIndices> triangles = meshTriangles(*extraction.mesh);
+  const pcl::cocone::MeshTopology topology = pcl::cocone::analyzeTriangleMesh(triangles);
+  EXPECT_TRUE(topology.isClosed());
+  EXPECT_TRUE(topology.isConsistentlyOriented());
+  EXPECT_EQ(topology.genus(), 0);
+  EXPECT_EQ(topology.components, 1u);
+  EXPECT_EQ(topology.vertices, points.size()); // every sample used
+  EXPECT_EQ(triangles.size(), 2 * points.size() - 4);
+  EXPECT_EQ(extraction.walked, triangles.size());
+  EXPECT_EQ(extraction.pinch_removed, 0u);
+  // The seed faces +x at the sample of largest x, and the walk keeps its orientation.
+  EXPECT_GT(pcl::cocone::test::signedVolume(extraction.mesh->points(), triangles), 0);
+  EXPECT_TRUE(extraction.mesh->traceLoops().empty());
+}
+
+TEST(Walk, SampledTorusKeepsItsGenus)
+{
+  const Extraction extraction(pcl::cocone::test::sampleTorus(2500, 7).points);
+  const pcl::cocone::MeshTopology topology =
+      pcl::cocone::analyzeTriangleMesh(meshTriangles(*extraction.mesh));
+  EXPECT_TRUE(topology.isClosed());
+  EXPECT_EQ(topology.genus(), 1);
+}
+
+/** The octahedron in the mesh but for its face on +x -y +z (the hole), which is a
+ * candidate of group 1 with \a others; the frontier holds the hole's edges. */
+struct OctahedronWithHole
+{
+  const Points points = FinnedOctahedron::finnedPoints();
+  MeshState mesh{points};
+  std::uint32_t hole_face = 0;
+
+  explicit OctahedronWithHole(const std::vector<TriangleIndices>& others = {})
+  {
+    std::vector<TriangleIndices> faces = octahedronFaces();
+    const auto is_hole = [](const TriangleIndices& t) {
+      return std::count(t.begin(), t.end(), 0u) && std::count(t.begin(), t.end(), 3u) &&
+             std::count(t.begin(), t.end(), 4u);
+    };
+    const auto hole = std::find_if(faces.begin(), faces.end(), is_hole);
+    const TriangleIndices missing = *hole;
+    faces.erase(hole);
+    for (const TriangleIndices& face : faces)
+      mesh.addToPool(face, kCoconeGroup);
+    mesh.closeGroup();
+    hole_face = mesh.addToPool(missing, 1);
+    for (const TriangleIndices& other : others)
+      mesh.addToPool(other, 1);
+    mesh.closeGroup();
+    mesh.rebuildIncidence();
+    for (std::uint32_t t = 0; t < 7; ++t)
+      mesh.enterMesh(t);
+    for (const TriangleIndices& face : faces) // their edges on the hole may be open
+      for (int k = 0; k < 3; ++k)
+        mesh.noteMaybeOpen(face[k], face[(k + 1) % 3]);
+  }
+
+  /** The walk's start at the hole edge a -> b (as its mesh triangle runs it). */
+  Walker::Front
+  frontAt(SampleIndex a, SampleIndex b) const
+  {
+    std::vector<std::uint32_t> on_edge;
+    mesh.meshOnEdge(a, b, on_edge);
+    EXPECT_EQ(on_edge.size(), 1u);
+    return {on_edge[0], mesh.edgeSlot(on_edge[0], a, b)};
+  }
+};
+
+TEST(Walk, HoleGroupClosesTheHoleWithTheSurfacesOrientation)
+{
+  OctahedronWithHole shape;
+  const auto loops = shape.mesh.traceLoops();
+  ASSERT_EQ(loops.size(), 1u);
+  std::vector<Walker::Front> frontier;
+  for (std::size_t k = 0; k < loops[0].size(); ++k)
+    frontier.push_back(shape.frontAt(loops[0][k], loops[0][(k + 1) % 3]));
+  PinchResolver pinches(shape.mesh);
+  Walker walker(shape.mesh, pinches, 1);
+  std::vector<std::uint32_t> added;
+  EXPECT_EQ(walker.walk(frontier, 1, added), 1u);
+  EXPECT_EQ(added, std::vector<std::uint32_t>{shape.hole_face});
+  EXPECT_TRUE(frontier.empty());
+  const pcl::cocone::MeshTopology topology =
+      pcl::cocone::analyzeTriangleMesh(meshTriangles(shape.mesh));
+  EXPECT_TRUE(topology.isClosed());
+  EXPECT_TRUE(topology.isConsistentlyOriented());
+  EXPECT_TRUE(shape.mesh.closes(loops[0], added));
+}
+
+// Across the edge +z +x, the walk takes the candidate that comes first when turning
+// from the mesh triangle towards its outside: a fin standing outward before the face
+// that would close the hole; a fin folding inward (within a right angle of the mesh
+// triangle) is never taken.
+TEST(Walk, StepTakesTheOutermostCandidate)
+{
+  OctahedronWithHole outward({kFin}); // (+x, +z, 6): 6 lies outside, in the plane y = 0
+  std::vector<Walker::Front> frontier = {outward.frontAt(4, 0)};
+  PinchResolver pinches(outward.mesh);
+  std::vector<std::uint32_t> added;
+  EXPECT_EQ(Walker(outward.mesh, pinches, 1).walk(frontier, 1, added), 1u);
+  ASSERT_EQ(added.size(), 1u);
+  EXPECT_NE(added[0], outward.hole_face);
+  EXPECT_EQ(outward.mesh.oriented(added[0]), (TriangleIndices{0, 4, 6})); // runs 0 -> 4
+
+  OctahedronWithHole inward({{0, 4, 9}});
+  frontier = {inward.frontAt(4, 0)};
+  PinchResolver inward_pinches(inward.mesh);
+  added.clear();
+  EXPECT_EQ(Walker(inward.mesh, inward_pinches, 1).walk(frontier, 1, added), 1u);
+  EXPECT_EQ(added, std::vector<std::uint32_t>{inward.hole_face});
+}
+
+TEST(Pinches, TheLargestFanStays)
+{
+  const Points points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                         {-1, 0, 0.5}, {-1, -1, 0.5}};
+  MeshState mesh(points);
+  for (const TriangleIndices& t :
+       std::vector<TriangleIndices>{{0, 1, 2}, {0, 2, 3}, {0, 4, 5}})
+    mesh.addToPool(t, kCoconeGroup);
+  mesh.closeGroup();
+  mesh.rebuildIncidence();
+  for (std::uint32_t t = 0; t < 3; ++t)
+    mesh.enterMesh(t);
+  ASSERT_EQ(mesh.countFans(0), 2u);
+  PinchResolver pinches(mesh);
+  EXPECT_EQ(pinches.resolve(), 0u); // nothing noted: nothing looked at
+  EXPECT_EQ(mesh.countFans(0), 2u);
+  pinches.note(1); // a vertex with one fan
+  pinches.note(mesh.oriented(2));
+  std::vector<std::uint32_t> removed;
+  EXPECT_EQ(pinches.resolve(&removed), 1u);
+  EXPECT_EQ(removed, std::vector<std::uint32_t>{2});
+  EXPECT_FALSE(mesh.inMesh(2));
+  EXPECT_EQ(mesh.countFans(0), 1u);
+  EXPECT_EQ(mesh.meshDegree(4), 0u);
+  EXPECT_EQ(pinches.resolve(), 0u);
 }
 
 // --- box grid --------------------------------------------------------------------
