@@ -3,6 +3,7 @@
 // inputs: the box grid, the least-area fill, and each stage of reconstructSurface.
 #include "reconstruction/box_grid.h"
 #include "reconstruction/candidates.h"
+#include "reconstruction/fill.h"
 #include "reconstruction/least_area_fill.h"
 #include "reconstruction/mesh_state.h"
 #include "reconstruction/prune.h"
@@ -37,6 +38,8 @@ using pcl::cocone::detail::fillLoopByLeastArea;
 using pcl::cocone::detail::LeastAreaFillScratch;
 using pcl::cocone::detail::MeshState;
 using pcl::cocone::detail::PinchResolver;
+using pcl::cocone::detail::PolygonFill;
+using pcl::cocone::detail::PolygonFiller;
 using pcl::cocone::detail::Pruner;
 using pcl::cocone::detail::Walker;
 using pcl::cocone::detail::kCoconeGroup;
@@ -501,36 +504,52 @@ TEST(Walk, SampledTorusKeepsItsGenus)
 }
 
 /** The octahedron in the mesh but for its face on +x -y +z (the hole), which is a
- * candidate of group 1 with \a others; the frontier holds the hole's edges. */
+ * candidate of group 1 with \a candidates; \a in_mesh are in the mesh too, and may use
+ * \a extra_points (numbered from 10). */
 struct OctahedronWithHole
 {
-  const Points points = FinnedOctahedron::finnedPoints();
+  const Points points;
   MeshState mesh{points};
   std::uint32_t hole_face = 0;
 
-  explicit OctahedronWithHole(const std::vector<TriangleIndices>& others = {})
+  static Points
+  withExtra(const Points& extra)
+  {
+    Points points = FinnedOctahedron::finnedPoints();
+    points.insert(points.end(), extra.begin(), extra.end());
+    return points;
+  }
+
+  explicit OctahedronWithHole(const std::vector<TriangleIndices>& candidates = {},
+                              const Points& extra_points = {},
+                              std::vector<TriangleIndices> in_mesh = {})
+      : points(withExtra(extra_points))
   {
     std::vector<TriangleIndices> faces = octahedronFaces();
-    const auto is_hole = [](const TriangleIndices& t) {
-      return std::count(t.begin(), t.end(), 0u) && std::count(t.begin(), t.end(), 3u) &&
-             std::count(t.begin(), t.end(), 4u);
-    };
-    const auto hole = std::find_if(faces.begin(), faces.end(), is_hole);
+    const auto hole = std::find_if(faces.begin(), faces.end(), isHoleFace);
     const TriangleIndices missing = *hole;
     faces.erase(hole);
-    for (const TriangleIndices& face : faces)
-      mesh.addToPool(face, kCoconeGroup);
+    in_mesh.insert(in_mesh.begin(), faces.begin(), faces.end());
+    for (const TriangleIndices& t : in_mesh)
+      mesh.addToPool(t, kCoconeGroup);
     mesh.closeGroup();
     hole_face = mesh.addToPool(missing, 1);
-    for (const TriangleIndices& other : others)
+    for (const TriangleIndices& other : candidates)
       mesh.addToPool(other, 1);
     mesh.closeGroup();
     mesh.rebuildIncidence();
-    for (std::uint32_t t = 0; t < 7; ++t)
+    for (std::uint32_t t = 0; t < in_mesh.size(); ++t) {
       mesh.enterMesh(t);
-    for (const TriangleIndices& face : faces) // their edges on the hole may be open
-      for (int k = 0; k < 3; ++k)
-        mesh.noteMaybeOpen(face[k], face[(k + 1) % 3]);
+      for (int k = 0; k < 3; ++k) // the edges on the hole may be open
+        mesh.noteMaybeOpen(in_mesh[t][k], in_mesh[t][(k + 1) % 3]);
+    }
+  }
+
+  static bool
+  isHoleFace(const TriangleIndices& t)
+  {
+    return std::count(t.begin(), t.end(), 0u) && std::count(t.begin(), t.end(), 3u) &&
+           std::count(t.begin(), t.end(), 4u);
   }
 
   /** The walk's start at the hole edge a -> b (as its mesh triangle runs it). */
@@ -613,6 +632,98 @@ TEST(Pinches, TheLargestFanStays)
   EXPECT_EQ(mesh.countFans(0), 1u);
   EXPECT_EQ(mesh.meshDegree(4), 0u);
   EXPECT_EQ(pinches.resolve(), 0u);
+}
+
+// --- polygon fill ---------------------------------------------------------------
+
+/** Takes the mesh triangles at \a v out of \a mesh; returns the loop of the hole. */
+std::vector<SampleIndex>
+openFanOf(MeshState& mesh, SampleIndex v)
+{
+  std::vector<std::uint32_t> fan, label;
+  mesh.labelFans(v, fan, label);
+  mesh.undo(fan);
+  std::vector<SampleIndex> loop;
+  EXPECT_TRUE(mesh.traceLoopFrom(mesh.oriented(fan[0])[0] == v ? mesh.oriented(fan[0])[1]
+                                                                : mesh.oriented(fan[0])[0],
+                                 loop));
+  return loop;
+}
+
+TEST(PolygonFill, ClosesTheHoleOfARemovedFan)
+{
+  const Points points = pcl::cocone::test::sampleSphere(1500, 6).points;
+  Extraction extraction(points);
+  MeshState& mesh = *extraction.mesh;
+  const SampleIndex v = 100;
+  std::vector<SampleIndex> loop = openFanOf(mesh, v);
+  ASSERT_GE(loop.size(), 4u);
+  const std::size_t before = meshTriangles(mesh).size();
+  PinchResolver pinches(mesh);
+  PolygonFiller filler(mesh, pinches, 2);
+  const PolygonFill fill = filler.fill(loop, 1);
+  EXPECT_TRUE(fill.closed);
+  EXPECT_EQ(fill.added, loop.size() - 2);
+  EXPECT_EQ(fill.removed, 0u);
+  const std::vector<TriangleIndices> triangles = meshTriangles(mesh);
+  EXPECT_EQ(triangles.size(), before + loop.size() - 2);
+  const pcl::cocone::MeshTopology topology = pcl::cocone::analyzeTriangleMesh(triangles);
+  EXPECT_TRUE(topology.isClosed());
+  EXPECT_TRUE(topology.isConsistentlyOriented());
+  EXPECT_EQ(topology.genus(), 0);
+  EXPECT_EQ(topology.vertices, points.size() - 1); // v stays out
+  for (std::uint32_t t = 0; t < mesh.poolSize(); ++t)
+    if (mesh.inMesh(t) && mesh.group(t) == kPolygonGroup)
+      EXPECT_FALSE(mesh.contains(t, v));
+}
+
+TEST(PolygonFill, TrueBoundariesStayOpen)
+{
+  OctahedronWithHole shape;
+  std::vector<SampleIndex> loop = shape.mesh.traceLoops().at(0);
+  PinchResolver pinches(shape.mesh);
+  // The missing face is 0.41 in size (twice its area over its perimeter): a true
+  // boundary at ratio 2 when the samples are 0.1 apart, a hole when they are 1 apart.
+  const PolygonFill open = PolygonFiller(shape.mesh, pinches, 2).fill(loop, 0.1);
+  EXPECT_FALSE(open.closed);
+  EXPECT_EQ(shape.mesh.traceLoops().size(), 1u);
+  EXPECT_EQ(shape.mesh.poolSize(), 8u); // nothing added
+
+  const PolygonFill closed = PolygonFiller(shape.mesh, pinches, 2).fill(loop, 1);
+  EXPECT_TRUE(closed.closed);
+  EXPECT_EQ(closed.added, 1u);
+  EXPECT_TRUE(shape.mesh.traceLoops().empty());
+  EXPECT_TRUE(pcl::cocone::analyzeTriangleMesh(meshTriangles(shape.mesh)).isClosed());
+}
+
+// A small triangle of the mesh pierces the missing face: the only fill crosses it, so
+// the hole grows over it; if the grown hole still stays open, it comes back.
+TEST(PolygonFill, GrowsOverWhatIsInTheWayOrRestoresIt)
+{
+  const Points octahedron = octahedronPoints();
+  const Vector centre = (octahedron[0] + octahedron[3] + octahedron[4]) / 3;
+  const Vector normal = Vector(1, -1, 1).normalized();
+  const Vector along = (octahedron[3] - octahedron[0]).normalized();
+  const Points spike = {centre - 0.2 * normal + 0.05 * along,
+                        centre - 0.2 * normal - 0.05 * along, centre + 0.2 * normal};
+  const TriangleIndices spike_triangle = {10, 11, 12};
+  const std::uint32_t spike_id = 7; // after the seven faces
+
+  OctahedronWithHole shape({}, spike, {spike_triangle});
+  ASSERT_TRUE(shape.mesh.inMesh(spike_id));
+  std::vector<SampleIndex> loop;
+  ASSERT_TRUE(shape.mesh.traceLoopFrom(0, loop));
+  PinchResolver pinches(shape.mesh);
+  const PolygonFill restored = PolygonFiller(shape.mesh, pinches, 2).fill(loop, 0.1);
+  EXPECT_FALSE(restored.closed);
+  EXPECT_TRUE(shape.mesh.inMesh(spike_id)); // put back
+
+  const PolygonFill grown = PolygonFiller(shape.mesh, pinches, 2).fill(loop, 1);
+  EXPECT_TRUE(grown.closed);
+  EXPECT_EQ(grown.added, 1u);
+  EXPECT_EQ(grown.removed, 1u);
+  EXPECT_FALSE(shape.mesh.inMesh(spike_id));
+  EXPECT_TRUE(pcl::cocone::analyzeTriangleMesh(meshTriangles(shape.mesh)).isClosed());
 }
 
 // --- box grid --------------------------------------------------------------------

@@ -3,7 +3,7 @@
 #include "common/parallel.h"
 #include "reconstruction/box_grid.h"
 #include "reconstruction/candidates.h"
-#include "reconstruction/least_area_fill.h"
+#include "reconstruction/fill.h"
 #include "reconstruction/local_spacing.h"
 #include "reconstruction/mesh_state.h"
 #include "reconstruction/prune.h"
@@ -48,12 +48,11 @@ using detail::boxesApart;
 using detail::kCandidate;
 using detail::kCoconeGroup;
 using detail::kInMesh;
+using detail::kLargestPolygonFill;
 using detail::kPolygonGroup;
 using detail::kRejected;
 
 constexpr std::uint32_t kNoTriangle = std::numeric_limits<std::uint32_t>::max();
-// Loops longer than this are not filled as polygons (O(m^3) time, O(m^2) memory).
-constexpr std::size_t kLargestPolygonFill = 60;
 // How far (in local spacings) an unused sample may lie from the mesh to be put back.
 constexpr double kInsertionReach = 1.0;
 
@@ -68,7 +67,8 @@ public:
       : voronoi_(voronoi), points_(voronoi.centeredPoints()), parameters_(parameters),
         report_(report), n_(voronoi.size()), mesh_(points_),
         pruner_(mesh_, report_.boundary_samples, voronoi.getNumberOfThreads()),
-        pinches_(mesh_), walker_(mesh_, pinches_, voronoi.getNumberOfThreads())
+        pinches_(mesh_), walker_(mesh_, pinches_, voronoi.getNumberOfThreads()),
+        filler_(mesh_, pinches_, parameters.true_boundary_ratio)
   {}
 
   void run(std::vector<TriangleIndices>& output);
@@ -84,10 +84,6 @@ private:
     return detail::isTrueBoundary(area, perimeter, spacing,
                                   parameters_.true_boundary_ratio);
   }
-  bool fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
-                                std::vector<TriangleIndices>& fill,
-                                std::vector<std::uint32_t>& blockers);
-  bool fillPolygon(std::vector<SampleIndex>& loop, double spacing);
   void stitch(std::vector<std::vector<SampleIndex> >& loops);
   std::size_t stitchLoops(std::vector<std::vector<SampleIndex> >& tried);
   void insertUnusedSamples();
@@ -108,10 +104,8 @@ private:
   detail::Pruner pruner_;
   detail::PinchResolver pinches_;
   detail::Walker walker_;
+  detail::PolygonFiller filler_;
   std::vector<double> spacing_;            // local sample spacing
-  detail::LeastAreaFillScratch fill_scratch_;  // of fillByDynamicProgramming
-  std::vector<std::uint32_t> near_;            // of fillByDynamicProgramming
-  std::vector<TriangleIndices> obstacles_;     // of fillByDynamicProgramming
 };
 
 // ---------------------------------------------------------------------------------
@@ -243,8 +237,13 @@ Mesher::stitch(std::vector<std::vector<SampleIndex> >& loops)
     }
     mesh_.undo(added);
 
-    if (fillPolygon(loops[h], spacing))
+    const detail::PolygonFill fill = filler_.fill(loops[h], spacing);
+    if (fill.closed) {
+      ++report_.stitched_holes;
+      report_.stitched_triangles += fill.added;
+      report_.stitched_triangles -= std::min(report_.stitched_triangles, fill.removed);
       stitched[h] = 1;
+    }
   }
   // Every hole was closed completely or not at all: the others are what stays open.
   std::size_t kept = 0;
@@ -285,113 +284,6 @@ Mesher::stitchLoops(std::vector<std::vector<SampleIndex> >& tried)
   const std::size_t offered = loops.size();
   stitch(loops);
   return offered;
-}
-
-// Closes a hole with the least-area triangulation of its loop. Where every such
-// triangulation would cut through surface triangles around the hole (typically a
-// triangle the walk laid across a sharp edge), those triangles are removed, the hole
-// grows to include them and the fill is tried again, a few times at most; if the hole
-// still cannot be closed, or turns out to be a true boundary, everything is restored.
-bool
-Mesher::fillPolygon(std::vector<SampleIndex>& loop, double spacing)
-{
-  constexpr int kGrowths = 3;
-  std::vector<std::uint32_t> removed, blockers, added;
-  std::vector<TriangleIndices> fill;
-  std::vector<SampleIndex> grown;
-  bool closed = false;
-  for (int attempt = 0; attempt <= kGrowths && !closed; ++attempt) {
-    if (loop.size() > kLargestPolygonFill)
-      break;
-    if (!fillByDynamicProgramming(loop, fill, blockers)) {
-      if (blockers.empty() || attempt == kGrowths)
-        break;
-      // Grow the hole over the triangles in the way; where that pinches a vertex (a
-      // blocker touching the hole at a vertex only), drop its smaller fan so that the
-      // holes join through an edge.
-      mesh_.undo(blockers);
-      removed.insert(removed.end(), blockers.begin(), blockers.end());
-      for (const std::uint32_t t : blockers)
-        pinches_.note(mesh_.oriented(t));
-      pinches_.resolve(&removed);
-      if (!mesh_.traceLoopFrom(loop.front(), grown) &&
-          !(mesh_.meshDegree(loop.back()) && mesh_.traceLoopFrom(loop.back(), grown)))
-        break;
-      loop = grown;
-      continue;
-    }
-    const double perimeter = mesh_.loopLength(loop);
-    double fill_area = 0;
-    for (const TriangleIndices& t : fill)
-      fill_area += 0.5 * mesh_.orientedNormal(t).norm();
-    PCL_VERBOSE(
-        "[pcl::cocone::reconstructSurface] hole of %zu edges: polygon fill of size "
-        "%.2f local spacings\n",
-        loop.size(), 2 * fill_area / perimeter / spacing);
-    if (isTrueBoundary(fill_area, perimeter, spacing))
-      break;
-    added.clear();
-    for (const TriangleIndices& t : fill) {
-      mesh_.addToPool(t, kPolygonGroup);
-      added.push_back(static_cast<std::uint32_t>(mesh_.poolSize() - 1));
-      mesh_.enterMesh(added.back());
-    }
-    closed = mesh_.closes(loop, added);
-    if (!closed) {
-      mesh_.undo(added);
-      break;
-    }
-  }
-  if (closed) {
-    ++report_.stitched_holes;
-    report_.stitched_triangles += added.size();
-    report_.stitched_triangles -= std::min(report_.stitched_triangles, removed.size());
-    return true;
-  }
-  for (const std::uint32_t t : removed) // restore what was removed to grow the hole
-    mesh_.enterMesh(t);
-  return false;
-}
-
-// The least-area fill of the loop (fillLoopByLeastArea), using no diagonal that is an
-// edge of the mesh already and no triangle that intersects the mesh around the hole;
-// the blockers are mesh triangles.
-bool
-Mesher::fillByDynamicProgramming(const std::vector<SampleIndex>& loop,
-                                 std::vector<TriangleIndices>& fill,
-                                 std::vector<std::uint32_t>& blockers)
-{
-  fill.clear();
-  blockers.clear();
-  const std::size_t m = loop.size();
-  if (m < 3)
-    return false;
-  std::vector<std::uint32_t> on_edge;
-  if (m == 3) {
-    // The loop of a lone triangle: its only fill is the same triangle again, which
-    // would make a two-sided, zero-volume component. (A longer loop's fill triangles
-    // each have a new diagonal, so none of them can be a mesh triangle.)
-    mesh_.meshOnEdge(loop[0], loop[1], on_edge);
-    for (const std::uint32_t u : on_edge)
-      if (mesh_.contains(u, loop[2]))
-        return false;
-  }
-  // Every fill triangle lies in the loop's bounding box: gather the mesh there once,
-  // rather than for each of the O(m^3) candidates.
-  mesh_.buildGrid();
-  mesh_.meshNear(mesh_.boundingBox(loop), near_);
-  obstacles_.clear();
-  for (const std::uint32_t u : near_)
-    obstacles_.push_back(mesh_.oriented(u));
-  const auto is_edge = [&](SampleIndex a, SampleIndex b) {
-    mesh_.meshOnEdge(a, b, on_edge);
-    return !on_edge.empty();
-  };
-  const bool found = detail::fillLoopByLeastArea(points_, loop, is_edge, obstacles_,
-                                                 fill, blockers, fill_scratch_);
-  for (std::uint32_t& blocker : blockers) // positions in near_, sorted as near_ is
-    blocker = near_[blocker];
-  return found;
 }
 
 // Samples left in no triangle although they lie on the surface (a hole grown over
