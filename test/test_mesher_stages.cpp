@@ -4,9 +4,11 @@
 #include "reconstruction/box_grid.h"
 #include "reconstruction/candidates.h"
 #include "reconstruction/fill.h"
+#include "reconstruction/local_spacing.h"
 #include "reconstruction/least_area_fill.h"
 #include "reconstruction/mesh_state.h"
 #include "reconstruction/prune.h"
+#include "reconstruction/stitch.h"
 #include "reconstruction/walk.h"
 
 #include <pcl/cocone/core/mesh_geometry.h>
@@ -41,6 +43,7 @@ using pcl::cocone::detail::PinchResolver;
 using pcl::cocone::detail::PolygonFill;
 using pcl::cocone::detail::PolygonFiller;
 using pcl::cocone::detail::Pruner;
+using pcl::cocone::detail::Stitcher;
 using pcl::cocone::detail::Walker;
 using pcl::cocone::detail::kCoconeGroup;
 using pcl::cocone::detail::kPolygonGroup;
@@ -724,6 +727,109 @@ TEST(PolygonFill, GrowsOverWhatIsInTheWayOrRestoresIt)
   EXPECT_EQ(grown.removed, 1u);
   EXPECT_FALSE(shape.mesh.inMesh(spike_id));
   EXPECT_TRUE(pcl::cocone::analyzeTriangleMesh(meshTriangles(shape.mesh)).isClosed());
+}
+
+// --- stitching -------------------------------------------------------------------
+
+/** The stages a Stitcher uses, over an Extraction's mesh. */
+struct Stitching
+{
+  Extraction& extraction;
+  MeshState& mesh = *extraction.mesh;
+  const std::vector<double> spacing =
+      pcl::cocone::detail::measureLocalSpacing(extraction.voronoi);
+  Pruner pruner{mesh, extraction.boundary, 1};
+  PinchResolver pinches{mesh};
+  Walker walker{mesh, pinches, 1};
+  PolygonFiller filler{mesh, pinches, 2};
+  Stitcher stitcher{mesh, extraction.voronoi, spacing, pruner, walker, filler, 2};
+};
+
+TEST(Stitch, SmallHoleIsClosedByItsDelaunayTriangles)
+{
+  const Points points = pcl::cocone::test::sampleSphere(1500, 6).points;
+  Extraction extraction(points);
+  Stitching stitching{extraction};
+  const SampleIndex v = 100;
+  std::vector<std::uint32_t> fan, label;
+  stitching.mesh.labelFans(v, fan, label);
+  openFanOf(stitching.mesh, v);
+  ASSERT_EQ(stitching.mesh.traceLoops().size(), 1u);
+
+  EXPECT_EQ(stitching.stitcher.stitchLoops(), 1u);
+  EXPECT_EQ(stitching.stitcher.stitchedHoles(), 1u);
+  // The unused sample inside the hole is a vertex of its Delaunay triangles: the walk
+  // puts its fan back.
+  EXPECT_EQ(stitching.stitcher.stitchedTriangles(), fan.size());
+  EXPECT_GT(stitching.mesh.meshDegree(v), 0u);
+  const pcl::cocone::MeshTopology topology =
+      pcl::cocone::analyzeTriangleMesh(meshTriangles(stitching.mesh));
+  EXPECT_TRUE(topology.isClosed());
+  EXPECT_TRUE(topology.isConsistentlyOriented());
+  EXPECT_EQ(topology.vertices, points.size());
+  EXPECT_EQ(stitching.stitcher.stitchLoops(), 0u); // nothing left to offer
+}
+
+/** Replaces mesh triangle \a t by a copy of itself: the mesh is the same, but the log
+ * sees a change in the triangle's box. Returns the copy. */
+std::uint32_t
+replaceByCopy(MeshState& mesh, std::uint32_t t)
+{
+  const TriangleIndices o = mesh.oriented(t);
+  mesh.leaveMesh(t);
+  const std::uint32_t copy = mesh.addToPool(o, kPolygonGroup);
+  mesh.enterMesh(copy);
+  return copy;
+}
+
+// A cap cut off a sampled sphere is a true boundary: offered once, it stays open, and
+// it is offered again only after the mesh changed within its bounding box.
+TEST(Stitch, LoopsAreOfferedAgainOnlyWhenTheMeshChangedNearThem)
+{
+  const Points points = pcl::cocone::test::sampleSphere(1500, 6).points;
+  Extraction extraction(points);
+  Stitching stitching{extraction};
+  MeshState& mesh = stitching.mesh;
+  const auto z = [&](SampleIndex v) { return mesh.points()[v].z(); };
+  for (std::uint32_t t = 0; t < mesh.poolSize(); ++t)
+    if (mesh.inMesh(t) && z(mesh.oriented(t)[0]) > 0.7 && z(mesh.oriented(t)[1]) > 0.7 &&
+        z(mesh.oriented(t)[2]) > 0.7)
+      mesh.leaveMesh(t);
+  const auto loops = mesh.traceLoops();
+  ASSERT_EQ(loops.size(), 1u);
+  const std::vector<SampleIndex> rim = loops[0];
+
+  EXPECT_EQ(stitching.stitcher.stitchLoops(), 1u);
+  EXPECT_EQ(stitching.stitcher.stitchedHoles(), 0u);
+  ASSERT_EQ(mesh.traceLoops().size(), 1u);
+  EXPECT_TRUE(sameCycle(mesh.traceLoops()[0], rim));
+  EXPECT_EQ(stitching.stitcher.stitchLoops(), 0u);
+
+  // Changes are logged from here on (the mesher does so after the first round). A
+  // triangle replaced by a copy of itself changes no loop, only the log.
+  mesh.logChanges(true);
+  const Box rim_box = mesh.boundingBox(rim);
+  std::uint32_t far = mesh.poolSize(), near = mesh.poolSize();
+  for (std::uint32_t t = 0; t < mesh.poolSize(); ++t) {
+    if (!mesh.inMesh(t))
+      continue;
+    if (boxesApart(mesh.boundingBox(mesh.oriented(t)), rim_box))
+      far = t;
+    else if (near == mesh.poolSize())
+      near = t;
+  }
+  ASSERT_LT(far, mesh.poolSize());
+  ASSERT_LT(near, mesh.poolSize());
+  replaceByCopy(mesh, far);
+  EXPECT_EQ(stitching.stitcher.stitchLoops(), 0u);
+  const std::uint32_t copy = replaceByCopy(mesh, near);
+  EXPECT_EQ(stitching.stitcher.stitchLoops(), 1u);
+  EXPECT_EQ(stitching.stitcher.stitchedHoles(), 0u);
+  EXPECT_EQ(mesh.traceLoops().size(), 1u);
+  // A change undone is no change.
+  mesh.leaveMesh(copy);
+  mesh.enterMesh(copy);
+  EXPECT_EQ(stitching.stitcher.stitchLoops(), 0u);
 }
 
 // --- box grid --------------------------------------------------------------------
