@@ -3,6 +3,7 @@
 // inputs: the box grid, the least-area fill, and each stage of reconstructSurface.
 #include "reconstruction/box_grid.h"
 #include "reconstruction/candidates.h"
+#include "reconstruction/crossings.h"
 #include "reconstruction/fill.h"
 #include "reconstruction/local_spacing.h"
 #include "reconstruction/least_area_fill.h"
@@ -830,6 +831,105 @@ TEST(Stitch, LoopsAreOfferedAgainOnlyWhenTheMeshChangedNearThem)
   mesh.leaveMesh(copy);
   mesh.enterMesh(copy);
   EXPECT_EQ(stitching.stitcher.stitchLoops(), 0u);
+}
+
+// --- crossings and insertion ----------------------------------------------------
+
+/** Triangle 0 in the plane z = 0, triangle 1 standing through it, triangle 2 apart
+ * from both; all in the mesh, 0 and 2 cocone candidates, 1 from a fill. */
+struct CrossingPair
+{
+  const Points points = {{0, 0, 0},      {2, 0, 0},       {0, 2, 0},
+                         {0.5, 0.2, -1}, {0.5, 0.2, 1},   {0.5, 1, 0},
+                         {5, 5, 5},      {6, 5, 5},       {5, 6, 5}};
+  MeshState mesh{points};
+  std::vector<std::uint8_t> boundary = std::vector<std::uint8_t>(points.size(), 0);
+
+  explicit CrossingPair(bool with_grid)
+  {
+    mesh.addToPool({0, 1, 2}, kCoconeGroup);
+    mesh.addToPool({3, 4, 5}, kPolygonGroup);
+    mesh.addToPool({6, 7, 8}, kCoconeGroup);
+    mesh.closeGroup();
+    mesh.rebuildIncidence();
+    for (std::uint32_t t = 0; t < 3; ++t)
+      mesh.enterMesh(t);
+    if (with_grid)
+      mesh.buildGrid();
+  }
+};
+
+// Of two crossing triangles the one added last goes, whichever is the suspect (a fill
+// triangle, or one at a boundary sample), and whichever way the pairs are found (the
+// grid of the mesh when fills built it, a grid of the suspects otherwise).
+TEST(Crossings, TheLaterOfTwoCrossingTrianglesGoes)
+{
+  ASSERT_TRUE(pcl::cocone::trianglesIntersect(CrossingPair(false).points, {0, 1, 2},
+                                              {3, 4, 5}));
+  for (const bool with_grid : {false, true}) {
+    CrossingPair fill_suspect(with_grid);
+    PinchResolver pinches(fill_suspect.mesh);
+    const auto removal = pcl::cocone::detail::removeCrossings(
+        fill_suspect.mesh, pinches, fill_suspect.boundary, 1);
+    EXPECT_EQ(removal.removed, 1u) << with_grid;
+    EXPECT_EQ(removal.pinch_removed, 0u) << with_grid;
+    EXPECT_TRUE(fill_suspect.mesh.inMesh(0)) << with_grid;
+    EXPECT_FALSE(fill_suspect.mesh.inMesh(1)) << with_grid;
+    EXPECT_TRUE(fill_suspect.mesh.inMesh(2)) << with_grid;
+
+    CrossingPair boundary_suspect(with_grid);
+    boundary_suspect.mesh.leaveMesh(1);  // triangle 1 goes back to the cocone group:
+    boundary_suspect.mesh.enterMesh(boundary_suspect.mesh.addToPool({3, 4, 5}, 0));
+    boundary_suspect.boundary[0] = 1; // only triangle 0 is suspect now
+    PinchResolver other_pinches(boundary_suspect.mesh);
+    EXPECT_EQ(pcl::cocone::detail::removeCrossings(boundary_suspect.mesh, other_pinches,
+                                                   boundary_suspect.boundary, 1)
+                  .removed,
+              1u)
+        << with_grid;
+    EXPECT_TRUE(boundary_suspect.mesh.inMesh(0)) << with_grid;
+    EXPECT_FALSE(boundary_suspect.mesh.inMesh(3)) << with_grid;
+  }
+
+  // Without a suspect nothing is looked at.
+  CrossingPair none(false);
+  none.mesh.leaveMesh(1);
+  PinchResolver pinches(none.mesh);
+  EXPECT_EQ(pcl::cocone::detail::removeCrossings(none.mesh, pinches, none.boundary, 1)
+                .removed,
+            0u);
+}
+
+// A sample left out over a filled hole is put back by splitting the triangle it lies
+// over (or the edge it lies next to); a duplicate stays out.
+TEST(Insertion, SampleOverAFilledHoleIsPutBack)
+{
+  Points points = pcl::cocone::test::sampleSphere(1500, 6).points;
+  points.push_back(points[5]); // a duplicate of sample 5
+  Extraction extraction(points);
+  MeshState& mesh = *extraction.mesh;
+  const SampleIndex v = 100, duplicate = static_cast<SampleIndex>(points.size() - 1);
+  ASSERT_EQ(extraction.voronoi.representative(duplicate), 5u);
+  std::vector<SampleIndex> loop = openFanOf(mesh, v);
+  PinchResolver pinches(mesh);
+  ASSERT_TRUE(PolygonFiller(mesh, pinches, 2).fill(loop, 1).closed);
+  ASSERT_EQ(mesh.meshDegree(v), 0u);
+
+  const std::vector<double> spacing =
+      pcl::cocone::detail::measureLocalSpacing(extraction.voronoi);
+  EXPECT_EQ(pcl::cocone::detail::insertUnusedSamples(mesh, extraction.voronoi, spacing),
+            1u);
+  EXPECT_GT(mesh.meshDegree(v), 0u);
+  EXPECT_EQ(mesh.meshDegree(duplicate), 0u);
+  const pcl::cocone::MeshTopology topology =
+      pcl::cocone::analyzeTriangleMesh(meshTriangles(mesh));
+  EXPECT_TRUE(topology.isClosed());
+  EXPECT_TRUE(topology.isConsistentlyOriented());
+  EXPECT_EQ(topology.vertices, points.size() - 1); // all but the duplicate
+  EXPECT_EQ(pcl::cocone::countSelfIntersections(mesh.points(), meshTriangles(mesh)), 0u);
+  // Nothing is left to put back.
+  EXPECT_EQ(pcl::cocone::detail::insertUnusedSamples(mesh, extraction.voronoi, spacing),
+            0u);
 }
 
 // --- box grid --------------------------------------------------------------------
