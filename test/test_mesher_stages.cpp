@@ -8,6 +8,7 @@
 #include "reconstruction/local_spacing.h"
 #include "reconstruction/least_area_fill.h"
 #include "reconstruction/mesh_state.h"
+#include "reconstruction/orientation.h"
 #include "reconstruction/prune.h"
 #include "reconstruction/stitch.h"
 #include "reconstruction/walk.h"
@@ -930,6 +931,55 @@ TEST(Insertion, SampleOverAFilledHoleIsPutBack)
   // Nothing is left to put back.
   EXPECT_EQ(pcl::cocone::detail::insertUnusedSamples(mesh, extraction.voronoi, spacing),
             0u);
+}
+
+// --- orientation ----------------------------------------------------------------
+
+// Three octahedra, centred at x = 0, 5 and 10: the first closed and facing inward, the
+// second open (a face out) and facing inward, the third closed and facing outward.
+// Only the first is flipped: an open component has no inside.
+TEST(Orientation, ClosedComponentsFacingInwardAreFlipped)
+{
+  Points points;
+  for (const double shift : {0.0, 5.0, 10.0})
+    for (const Vector& p : octahedronPoints())
+      points.push_back(p + Vector(shift, 0, 0));
+  MeshState mesh(points);
+  const auto shifted = [](TriangleIndices t, std::uint32_t by) {
+    for (std::uint32_t& v : t)
+      v += by;
+    return t;
+  };
+  for (const TriangleIndices& face : octahedronFaces(false))
+    mesh.addToPool(face, kCoconeGroup);
+  for (const TriangleIndices& face : octahedronFaces(false))
+    mesh.addToPool(shifted(face, 6), kCoconeGroup);
+  for (const TriangleIndices& face : octahedronFaces(true))
+    mesh.addToPool(shifted(face, 12), kCoconeGroup);
+  mesh.closeGroup();
+  mesh.rebuildIncidence();
+  for (std::uint32_t t = 0; t < 24; ++t)
+    mesh.enterMesh(t);
+  mesh.leaveMesh(8); // opens the second
+
+  const auto facing_out = [&](std::uint32_t t, double shift) {
+    const TriangleIndices& o = mesh.oriented(t);
+    const Vector centre = (points[o[0]] + points[o[1]] + points[o[2]]) / 3;
+    return mesh.orientedNormal(o).dot(centre - Vector(shift, 0, 0)) > 0;
+  };
+  pcl::cocone::detail::orientClosedComponentsOutward(mesh);
+  for (std::uint32_t t = 0; t < 8; ++t)
+    EXPECT_TRUE(facing_out(t, 0)) << t;
+  for (std::uint32_t t = 9; t < 16; ++t)
+    EXPECT_FALSE(facing_out(t, 5)) << t;
+  for (std::uint32_t t = 16; t < 24; ++t)
+    EXPECT_TRUE(facing_out(t, 10)) << t;
+  const std::vector<TriangleIndices> triangles = meshTriangles(mesh);
+  const pcl::cocone::MeshTopology topology = pcl::cocone::analyzeTriangleMesh(triangles);
+  EXPECT_TRUE(topology.isConsistentlyOriented());
+  EXPECT_EQ(topology.components, 3u);
+  const std::vector<TriangleIndices> first(triangles.begin(), triangles.begin() + 8);
+  EXPECT_GT(pcl::cocone::test::signedVolume(points, first), 0);
 }
 
 // --- box grid --------------------------------------------------------------------
