@@ -5,8 +5,8 @@
 #include "reconstruction/candidates.h"
 #include "reconstruction/crossings.h"
 #include "reconstruction/fill.h"
-#include "reconstruction/local_spacing.h"
 #include "reconstruction/least_area_fill.h"
+#include "reconstruction/local_spacing.h"
 #include "reconstruction/mesh_state.h"
 #include "reconstruction/orientation.h"
 #include "reconstruction/prune.h"
@@ -35,10 +35,20 @@
 
 namespace {
 
+using pcl::cocone::analyzeTriangleMesh;
+using pcl::cocone::MeshTopology;
+using pcl::cocone::SampleIndex;
+using pcl::cocone::TriangleIndices;
+using pcl::cocone::VoronoiCocone;
 using pcl::cocone::detail::Box;
-using pcl::cocone::detail::BoxGrid;
 using pcl::cocone::detail::boxesApart;
+using pcl::cocone::detail::BoxGrid;
+using pcl::cocone::detail::collectCandidates;
 using pcl::cocone::detail::fillLoopByLeastArea;
+using pcl::cocone::detail::kCandidate;
+using pcl::cocone::detail::kCoconeGroup;
+using pcl::cocone::detail::kPolygonGroup;
+using pcl::cocone::detail::kRejected;
 using pcl::cocone::detail::LeastAreaFillScratch;
 using pcl::cocone::detail::MeshState;
 using pcl::cocone::detail::PinchResolver;
@@ -47,13 +57,6 @@ using pcl::cocone::detail::PolygonFiller;
 using pcl::cocone::detail::Pruner;
 using pcl::cocone::detail::Stitcher;
 using pcl::cocone::detail::Walker;
-using pcl::cocone::detail::kCoconeGroup;
-using pcl::cocone::detail::kPolygonGroup;
-using pcl::cocone::SampleIndex;
-using pcl::cocone::VoronoiCocone;
-using pcl::cocone::detail::kCandidate;
-using pcl::cocone::detail::kRejected;
-using pcl::cocone::TriangleIndices;
 using Vector = Eigen::Vector3d;
 using Points = std::vector<Vector>;
 
@@ -89,8 +92,7 @@ octahedronFaces(bool outward = true)
     for (std::uint32_t y : {2u, 3u})
       for (std::uint32_t z : {4u, 5u}) {
         TriangleIndices face = {x, y, z};
-        const Vector normal =
-            (points[y] - points[x]).cross(points[z] - points[x]);
+        const Vector normal = (points[y] - points[x]).cross(points[z] - points[x]);
         const Vector centre = points[x] + points[y] + points[z];
         if ((normal.dot(centre) > 0) != outward)
           std::swap(face[1], face[2]);
@@ -120,6 +122,292 @@ sameCycle(std::vector<SampleIndex> loop, const std::vector<SampleIndex>& expecte
     std::rotate(loop.begin(), loop.begin() + 1, loop.end());
   }
   return false;
+}
+
+// --- box grid --------------------------------------------------------------------
+
+std::vector<std::uint32_t>
+bruteForceOverlapping(const std::vector<Box>& boxes, const Box& query)
+{
+  std::vector<std::uint32_t> found;
+  for (std::uint32_t i = 0; i < boxes.size(); ++i)
+    if (!boxesApart(boxes[i], query))
+      found.push_back(i);
+  return found;
+}
+
+TEST(BoxGrid, TouchingBoxesMeetAndSeparatedOnesDoNot)
+{
+  const Box unit{Vector(0, 0, 0), Vector(1, 1, 1)};
+  EXPECT_FALSE(boxesApart(unit, {Vector(1, 1, 1), Vector(2, 2, 2)})); // a corner
+  EXPECT_FALSE(boxesApart(unit, {Vector(1, 0.5, -3), Vector(5, 0.6, 3)})); // a face
+  EXPECT_TRUE(boxesApart(unit, {Vector(1 + 1e-12, 0, 0), Vector(2, 1, 1)}));
+  EXPECT_TRUE(boxesApart(unit, {Vector(0, 0, -2), Vector(1, 1, -1e-12)}));
+}
+
+// Random boxes of many sizes (some over more cells than the grid lists, some flat, some
+// at negative coordinates), against queries from a point to wider than everything.
+TEST(BoxGrid, FindsExactlyTheBoxesThatMeetAQuery)
+{
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> position(-20, 20), size(0, 1);
+  std::vector<Box> boxes;
+  double edges = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Vector low(position(random), position(random), position(random));
+    Vector extent(size(random), size(random), size(random));
+    if (i % 50 == 0)
+      extent *= 40; // a long triangle: kept among the large ones
+    if (i % 7 == 0)
+      extent.z() = 0; // flat
+    boxes.push_back({low, low + extent});
+    edges += extent.norm();
+  }
+  // The touching cases, exactly on a cell's side and on a box's.
+  boxes.push_back({Vector(0, 0, 0), Vector(1, 1, 1)});
+  boxes.push_back({Vector(1, 1, 1), Vector(2, 2, 2)});
+  BoxGrid grid(BoxGrid::cellSideFor(edges, boxes.size()));
+  ASSERT_GT(grid.cellSide(), 0);
+  for (std::uint32_t i = 0; i < boxes.size(); ++i)
+    grid.insert(i, boxes[i]);
+
+  std::vector<Box> queries = {{Vector(1, 1, 1), Vector(1, 1, 1)}, // a point
+                              {Vector(-1, -1, -1), Vector(0, 0, 0)},
+                              {Vector(-50, -50, -50), Vector(50, 50, 50)}}; // all
+  for (int q = 0; q < 300; ++q) {
+    const Vector low(position(random), position(random), position(random));
+    const Vector extent(size(random), size(random), size(random));
+    queries.push_back({low, low + 6 * extent});
+  }
+  const auto box_of = [&](std::uint32_t i) -> const Box& { return boxes[i]; };
+  std::size_t found_any = 0;
+  for (const Box& query : queries) {
+    const std::vector<std::uint32_t> expected = bruteForceOverlapping(boxes, query);
+    found_any += !expected.empty();
+
+    std::vector<std::uint32_t> overlapping;
+    grid.forEachOverlapping(query, box_of,
+                            [&](std::uint32_t i) { overlapping.push_back(i); });
+    std::sort(overlapping.begin(), overlapping.end());
+    EXPECT_EQ(overlapping, expected); // each once: no repeats
+
+    // forEachNear gives a superset (the entries of the cells met): sifted by box, the
+    // same set.
+    std::vector<std::uint32_t> near;
+    grid.forEachNear(query, box_of, [&](std::uint32_t i) { near.push_back(i); });
+    std::sort(near.begin(), near.end());
+    near.erase(std::unique(near.begin(), near.end()), near.end());
+    EXPECT_TRUE(
+        std::includes(near.begin(), near.end(), expected.begin(), expected.end()));
+    const auto apart = [&](std::uint32_t i) { return boxesApart(boxes[i], query); };
+    near.erase(std::remove_if(near.begin(), near.end(), apart), near.end());
+    EXPECT_EQ(near, expected);
+  }
+  EXPECT_GT(found_any, queries.size() / 2); // the queries are not all in empty space
+}
+
+TEST(BoxGrid, CellSideIsTwiceTheMeanEdge)
+{
+  EXPECT_DOUBLE_EQ(BoxGrid::cellSideFor(10, 5), 4);
+  EXPECT_DOUBLE_EQ(BoxGrid::cellSideFor(0, 5), 1); // nothing to measure: any side
+  EXPECT_DOUBLE_EQ(BoxGrid::cellSideFor(3, 0), 1);
+}
+
+// --- least-area fill -------------------------------------------------------------
+
+const auto kNoEdge = [](std::uint32_t, std::uint32_t) { return false; };
+
+/** Whether the fill continues the surface across the loop: every loop edge a -> b is
+ * run b -> a by exactly one fill triangle. */
+bool
+continuesAcrossLoop(const std::vector<std::uint32_t>& loop,
+                    const std::vector<TriangleIndices>& fill)
+{
+  for (std::size_t k = 0; k < loop.size(); ++k) {
+    const std::uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
+    int runs = 0;
+    for (const TriangleIndices& t : fill)
+      for (int e = 0; e < 3; ++e)
+        runs += t[e] == b && t[(e + 1) % 3] == a;
+    if (runs != 1)
+      return false;
+  }
+  return true;
+}
+
+TEST(LeastAreaFill, PlanarSquareGivesTwoTrianglesOfItsArea)
+{
+  const Points points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const std::vector<std::uint32_t> loop = {0, 1, 2, 3};
+  std::vector<TriangleIndices> fill;
+  std::vector<std::uint32_t> blockers;
+  LeastAreaFillScratch scratch;
+  ASSERT_TRUE(fillLoopByLeastArea(points, loop, kNoEdge, {}, fill, blockers, scratch));
+  EXPECT_EQ(fill.size(), 2u);
+  EXPECT_DOUBLE_EQ(areaOf(points, fill), 1);
+  EXPECT_TRUE(continuesAcrossLoop(loop, fill));
+  EXPECT_TRUE(blockers.empty());
+
+  // Either diagonal will do; forbid the one chosen, and the other one is used.
+  std::set<std::uint32_t> first(fill[0].begin(), fill[0].end());
+  std::set<std::uint32_t> second(fill[1].begin(), fill[1].end());
+  std::vector<std::uint32_t> diagonal;
+  std::set_intersection(first.begin(), first.end(), second.begin(), second.end(),
+                        std::back_inserter(diagonal));
+  ASSERT_EQ(diagonal.size(), 2u);
+  const auto is_that_diagonal = [&](std::uint32_t a, std::uint32_t b) {
+    return std::minmax(a, b) == std::minmax(diagonal[0], diagonal[1]);
+  };
+  ASSERT_TRUE(
+      fillLoopByLeastArea(points, loop, is_that_diagonal, {}, fill, blockers, scratch));
+  ASSERT_EQ(fill.size(), 2u);
+  EXPECT_DOUBLE_EQ(areaOf(points, fill), 1);
+  for (const TriangleIndices& t : fill)
+    EXPECT_FALSE(std::count(t.begin(), t.end(), diagonal[0]) &&
+                 std::count(t.begin(), t.end(), diagonal[1]));
+}
+
+// A chevron (0, 0) (2, 1) (4, 0) (2, 3), reflex at (2, 1): the inner diagonal gives its
+// area, 4; the outer one folds over it, 8.
+TEST(LeastAreaFill, NonConvexLoopUsesItsInnerDiagonal)
+{
+  const Points points = {{0, 0, 0}, {2, 1, 0}, {4, 0, 0}, {2, 3, 0}};
+  const std::vector<std::uint32_t> loop = {0, 1, 2, 3};
+  std::vector<TriangleIndices> fill;
+  std::vector<std::uint32_t> blockers;
+  LeastAreaFillScratch scratch;
+  ASSERT_TRUE(fillLoopByLeastArea(points, loop, kNoEdge, {}, fill, blockers, scratch));
+  EXPECT_DOUBLE_EQ(areaOf(points, fill), 4);
+  EXPECT_TRUE(continuesAcrossLoop(loop, fill));
+  const auto inner_is_edge = [](std::uint32_t a, std::uint32_t b) {
+    return std::minmax(a, b) == std::minmax(1u, 3u);
+  };
+  ASSERT_TRUE(
+      fillLoopByLeastArea(points, loop, inner_is_edge, {}, fill, blockers, scratch));
+  EXPECT_DOUBLE_EQ(areaOf(points, fill), 8);
+
+  const std::vector<std::uint32_t> too_short = {0, 1};
+  EXPECT_FALSE(
+      fillLoopByLeastArea(points, too_short, kNoEdge, {}, fill, blockers, scratch));
+  EXPECT_TRUE(fill.empty());
+}
+
+/** The least area over every triangulation of loop[i..k] closed by the chord (i, k)
+ * that uses no edge of \a is_edge: enumerated without memory, as a reference. */
+double
+bruteForceLeastArea(const Points& points, const std::vector<std::uint32_t>& loop,
+                    const std::function<bool(std::uint32_t, std::uint32_t)>& is_edge,
+                    std::size_t i, std::size_t k)
+{
+  if (k == i + 1)
+    return 0;
+  const std::size_t m = loop.size();
+  if (!(i == 0 && k == m - 1) && is_edge(loop[i], loop[k]))
+    return std::numeric_limits<double>::infinity();
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t j = i + 1; j < k; ++j)
+    best = std::min(best, bruteForceLeastArea(points, loop, is_edge, i, j) +
+                              bruteForceLeastArea(points, loop, is_edge, j, k) +
+                              areaOf(points, {loop[j], loop[i], loop[k]}));
+  return best;
+}
+
+TEST(LeastAreaFill, RandomSkewLoopsGetTheLeastArea)
+{
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> jitter(-0.4, 0.4);
+  LeastAreaFillScratch scratch; // reused across loops of any size, as the mesher does
+  for (int trial = 0; trial < 40; ++trial) {
+    const std::size_t m = 4 + trial % 6;
+    Points points;
+    std::vector<std::uint32_t> loop;
+    for (std::size_t k = 0; k < m; ++k) {
+      const double angle = 2 * M_PI * static_cast<double>(k) / static_cast<double>(m);
+      points.emplace_back(std::cos(angle) + jitter(random),
+                          std::sin(angle) + jitter(random), jitter(random));
+      loop.push_back(static_cast<std::uint32_t>(m - 1 - k)); // any numbering
+    }
+    std::set<std::pair<std::uint32_t, std::uint32_t> > edges; // a few diagonals taken
+    for (int e = 0; e < trial % 3; ++e) {
+      const auto a = static_cast<std::uint32_t>(random() % m);
+      const auto b = static_cast<std::uint32_t>((a + 2 + random() % (m - 3)) % m);
+      edges.insert(std::minmax(a, b));
+    }
+    const auto is_edge = [&](std::uint32_t a, std::uint32_t b) {
+      return edges.count(std::minmax(a, b)) > 0;
+    };
+    const double expected = bruteForceLeastArea(points, loop, is_edge, 0, m - 1);
+    std::vector<TriangleIndices> fill;
+    std::vector<std::uint32_t> blockers;
+    const bool found =
+        fillLoopByLeastArea(points, loop, is_edge, {}, fill, blockers, scratch);
+    ASSERT_EQ(found, expected < std::numeric_limits<double>::infinity()) << trial;
+    if (!found)
+      continue;
+    EXPECT_EQ(fill.size(), m - 2) << trial;
+    EXPECT_NEAR(areaOf(points, fill), expected, 1e-12) << trial;
+    EXPECT_TRUE(continuesAcrossLoop(loop, fill)) << trial;
+    for (const TriangleIndices& t : fill)
+      for (int e = 0; e < 3; ++e)
+        EXPECT_FALSE(is_edge(t[e], t[(e + 1) % 3])) << trial;
+  }
+}
+
+/** A small triangle through the centroid of triangle \a t, across it; its corners are
+ * appended to \a points. */
+TriangleIndices
+spikeThrough(Points& points, const TriangleIndices& t)
+{
+  const Vector c = (points[t[0]] + points[t[1]] + points[t[2]]) / 3;
+  const Vector n =
+      (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).normalized();
+  const Vector u = (points[t[1]] - points[t[0]]).normalized();
+  const auto first = static_cast<std::uint32_t>(points.size());
+  points.push_back(c - 0.05 * n + 0.02 * u);
+  points.push_back(c - 0.05 * n - 0.02 * u);
+  points.push_back(c + 0.05 * n);
+  return {first, first + 1, first + 2};
+}
+
+// A skew quadrilateral has two fills, one per diagonal. An obstacle through the smaller
+// one gives the other; obstacles through both give none, and name the two.
+TEST(LeastAreaFill, ObstaclesAreAvoidedOrNamed)
+{
+  Points points = {{0, 0, 0}, {1, 0, 0.8}, {1.2, 1.1, 0}, {0, 1, 0.3}};
+  const std::vector<std::uint32_t> loop = {0, 1, 2, 3};
+  // As the fill orients them (loop[j], loop[i], loop[k]).
+  const std::vector<TriangleIndices> by_02 = {{1, 0, 2}, {2, 0, 3}};
+  const std::vector<TriangleIndices> by_13 = {{2, 1, 3}, {1, 0, 3}};
+  const double area_02 = areaOf(points, by_02), area_13 = areaOf(points, by_13);
+  ASSERT_GT(std::abs(area_02 - area_13), 0.01);
+  const auto& smaller = area_02 < area_13 ? by_02 : by_13;
+  const auto& larger = area_02 < area_13 ? by_13 : by_02;
+
+  std::vector<TriangleIndices> fill;
+  std::vector<std::uint32_t> blockers;
+  LeastAreaFillScratch scratch;
+  ASSERT_TRUE(fillLoopByLeastArea(points, loop, kNoEdge, {}, fill, blockers, scratch));
+  EXPECT_DOUBLE_EQ(areaOf(points, fill), areaOf(points, smaller));
+
+  std::vector<TriangleIndices> obstacles = {spikeThrough(points, smaller[0])};
+  const auto far = static_cast<std::uint32_t>(points.size());
+  points.push_back({5, 5, 5});
+  points.push_back({6, 5, 5});
+  points.push_back({5, 6, 5});
+  obstacles.push_back({far, far + 1, far + 2}); // in the way of nothing
+  for (const TriangleIndices& t : larger) // the test's premise
+    ASSERT_FALSE(pcl::cocone::trianglesIntersect(points, t, obstacles[0]));
+  ASSERT_TRUE(pcl::cocone::trianglesIntersect(points, smaller[0], obstacles[0]));
+  ASSERT_TRUE(
+      fillLoopByLeastArea(points, loop, kNoEdge, obstacles, fill, blockers, scratch));
+  EXPECT_DOUBLE_EQ(areaOf(points, fill), areaOf(points, larger));
+  EXPECT_TRUE(blockers.empty()); // found within the rounds
+
+  obstacles.push_back(spikeThrough(points, larger[0]));
+  EXPECT_FALSE(
+      fillLoopByLeastArea(points, loop, kNoEdge, obstacles, fill, blockers, scratch));
+  EXPECT_TRUE(fill.empty());
+  EXPECT_EQ(blockers, (std::vector<std::uint32_t>{0, 2})); // not the far one
 }
 
 // --- mesh state ------------------------------------------------------------------
@@ -228,7 +516,7 @@ TEST(Candidates, EveryVoterMustMarkATriangle)
   // samples.
   std::vector<std::uint8_t> boundary(points.size(), 0);
   MeshState mesh(voronoi.centeredPoints());
-  const std::size_t count = pcl::cocone::detail::collectCandidates(voronoi, boundary, mesh);
+  const std::size_t count = collectCandidates(voronoi, boundary, mesh);
   EXPECT_EQ(count, mesh.poolSize());
   EXPECT_EQ(count, static_cast<std::size_t>(
                        std::count_if(marked.begin(), marked.end(), marked_by_all)));
@@ -260,7 +548,7 @@ TEST(Candidates, EveryVoterMustMarkATriangle)
                     c = marked[two_voters].vertex[not_voting];
   boundary[c] = 1;
   MeshState with_boundary(voronoi.centeredPoints());
-  pcl::cocone::detail::collectCandidates(voronoi, boundary, with_boundary);
+  collectCandidates(voronoi, boundary, with_boundary);
   bool found = false;
   for (std::uint32_t t = 0; t < with_boundary.poolSize(); ++t) {
     const TriangleIndices& tri = with_boundary.triangle(t);
@@ -271,7 +559,7 @@ TEST(Candidates, EveryVoterMustMarkATriangle)
   EXPECT_TRUE(found);
   boundary.assign(points.size(), 1);
   MeshState all_boundary(voronoi.centeredPoints());
-  EXPECT_EQ(pcl::cocone::detail::collectCandidates(voronoi, boundary, all_boundary), 0u);
+  EXPECT_EQ(collectCandidates(voronoi, boundary, all_boundary), 0u);
 }
 
 /** A unit grid of 11 x 11 samples in the plane z = 0, its squares split along the
@@ -472,7 +760,7 @@ struct Extraction
     computeDiagram(points, voronoi);
     mesh = std::make_unique<MeshState>(voronoi.centeredPoints());
     boundary.assign(points.size(), 0);
-    pcl::cocone::detail::collectCandidates(voronoi, boundary, *mesh);
+    collectCandidates(voronoi, boundary, *mesh);
     Pruner(*mesh, boundary, 0).prune(kCoconeGroup);
     PinchResolver pinches(*mesh);
     walked = Walker(*mesh, pinches, 0).walkAll();
@@ -485,7 +773,7 @@ TEST(Walk, SampledSphereGivesAClosedManifoldFacingOutward)
   const Points points = pcl::cocone::test::sampleSphere(1500, 6).points;
   const Extraction extraction(points);
   const std::vector<TriangleIndices> triangles = meshTriangles(*extraction.mesh);
-  const pcl::cocone::MeshTopology topology = pcl::cocone::analyzeTriangleMesh(triangles);
+  const MeshTopology topology = analyzeTriangleMesh(triangles);
   EXPECT_TRUE(topology.isClosed());
   EXPECT_TRUE(topology.isConsistentlyOriented());
   EXPECT_EQ(topology.genus(), 0);
@@ -502,8 +790,7 @@ TEST(Walk, SampledSphereGivesAClosedManifoldFacingOutward)
 TEST(Walk, SampledTorusKeepsItsGenus)
 {
   const Extraction extraction(pcl::cocone::test::sampleTorus(2500, 7).points);
-  const pcl::cocone::MeshTopology topology =
-      pcl::cocone::analyzeTriangleMesh(meshTriangles(*extraction.mesh));
+  const MeshTopology topology = analyzeTriangleMesh(meshTriangles(*extraction.mesh));
   EXPECT_TRUE(topology.isClosed());
   EXPECT_EQ(topology.genus(), 1);
 }
@@ -582,8 +869,7 @@ TEST(Walk, HoleGroupClosesTheHoleWithTheSurfacesOrientation)
   EXPECT_EQ(walker.walk(frontier, 1, added), 1u);
   EXPECT_EQ(added, std::vector<std::uint32_t>{shape.hole_face});
   EXPECT_TRUE(frontier.empty());
-  const pcl::cocone::MeshTopology topology =
-      pcl::cocone::analyzeTriangleMesh(meshTriangles(shape.mesh));
+  const MeshTopology topology = analyzeTriangleMesh(meshTriangles(shape.mesh));
   EXPECT_TRUE(topology.isClosed());
   EXPECT_TRUE(topology.isConsistentlyOriented());
   EXPECT_TRUE(shape.mesh.closes(loops[0], added));
@@ -649,9 +935,8 @@ openFanOf(MeshState& mesh, SampleIndex v)
   mesh.labelFans(v, fan, label);
   mesh.undo(fan);
   std::vector<SampleIndex> loop;
-  EXPECT_TRUE(mesh.traceLoopFrom(mesh.oriented(fan[0])[0] == v ? mesh.oriented(fan[0])[1]
-                                                                : mesh.oriented(fan[0])[0],
-                                 loop));
+  const TriangleIndices& first = mesh.oriented(fan[0]);
+  EXPECT_TRUE(mesh.traceLoopFrom(first[0] == v ? first[1] : first[0], loop));
   return loop;
 }
 
@@ -672,7 +957,7 @@ TEST(PolygonFill, ClosesTheHoleOfARemovedFan)
   EXPECT_EQ(fill.removed, 0u);
   const std::vector<TriangleIndices> triangles = meshTriangles(mesh);
   EXPECT_EQ(triangles.size(), before + loop.size() - 2);
-  const pcl::cocone::MeshTopology topology = pcl::cocone::analyzeTriangleMesh(triangles);
+  const MeshTopology topology = analyzeTriangleMesh(triangles);
   EXPECT_TRUE(topology.isClosed());
   EXPECT_TRUE(topology.isConsistentlyOriented());
   EXPECT_EQ(topology.genus(), 0);
@@ -698,7 +983,7 @@ TEST(PolygonFill, TrueBoundariesStayOpen)
   EXPECT_TRUE(closed.closed);
   EXPECT_EQ(closed.added, 1u);
   EXPECT_TRUE(shape.mesh.traceLoops().empty());
-  EXPECT_TRUE(pcl::cocone::analyzeTriangleMesh(meshTriangles(shape.mesh)).isClosed());
+  EXPECT_TRUE(analyzeTriangleMesh(meshTriangles(shape.mesh)).isClosed());
 }
 
 // A small triangle of the mesh pierces the missing face: the only fill crosses it, so
@@ -728,7 +1013,7 @@ TEST(PolygonFill, GrowsOverWhatIsInTheWayOrRestoresIt)
   EXPECT_EQ(grown.added, 1u);
   EXPECT_EQ(grown.removed, 1u);
   EXPECT_FALSE(shape.mesh.inMesh(spike_id));
-  EXPECT_TRUE(pcl::cocone::analyzeTriangleMesh(meshTriangles(shape.mesh)).isClosed());
+  EXPECT_TRUE(analyzeTriangleMesh(meshTriangles(shape.mesh)).isClosed());
 }
 
 // --- stitching -------------------------------------------------------------------
@@ -764,8 +1049,7 @@ TEST(Stitch, SmallHoleIsClosedByItsDelaunayTriangles)
   // puts its fan back.
   EXPECT_EQ(stitching.stitcher.stitchedTriangles(), fan.size());
   EXPECT_GT(stitching.mesh.meshDegree(v), 0u);
-  const pcl::cocone::MeshTopology topology =
-      pcl::cocone::analyzeTriangleMesh(meshTriangles(stitching.mesh));
+  const MeshTopology topology = analyzeTriangleMesh(meshTriangles(stitching.mesh));
   EXPECT_TRUE(topology.isClosed());
   EXPECT_TRUE(topology.isConsistentlyOriented());
   EXPECT_EQ(topology.vertices, points.size());
@@ -794,8 +1078,8 @@ TEST(Stitch, LoopsAreOfferedAgainOnlyWhenTheMeshChangedNearThem)
   MeshState& mesh = stitching.mesh;
   const auto z = [&](SampleIndex v) { return mesh.points()[v].z(); };
   for (std::uint32_t t = 0; t < mesh.poolSize(); ++t)
-    if (mesh.inMesh(t) && z(mesh.oriented(t)[0]) > 0.7 && z(mesh.oriented(t)[1]) > 0.7 &&
-        z(mesh.oriented(t)[2]) > 0.7)
+    if (mesh.inMesh(t) && z(mesh.oriented(t)[0]) > 0.7 &&
+        z(mesh.oriented(t)[1]) > 0.7 && z(mesh.oriented(t)[2]) > 0.7)
       mesh.leaveMesh(t);
   const auto loops = mesh.traceLoops();
   ASSERT_EQ(loops.size(), 1u);
@@ -840,9 +1124,9 @@ TEST(Stitch, LoopsAreOfferedAgainOnlyWhenTheMeshChangedNearThem)
  * from both; all in the mesh, 0 and 2 cocone candidates, 1 from a fill. */
 struct CrossingPair
 {
-  const Points points = {{0, 0, 0},      {2, 0, 0},       {0, 2, 0},
-                         {0.5, 0.2, -1}, {0.5, 0.2, 1},   {0.5, 1, 0},
-                         {5, 5, 5},      {6, 5, 5},       {5, 6, 5}};
+  const Points points = {{0, 0, 0},      {2, 0, 0},     {0, 2, 0},
+                         {0.5, 0.2, -1}, {0.5, 0.2, 1}, {0.5, 1, 0},
+                         {5, 5, 5},      {6, 5, 5},     {5, 6, 5}};
   MeshState mesh{points};
   std::vector<std::uint8_t> boundary = std::vector<std::uint8_t>(points.size(), 0);
 
@@ -879,7 +1163,7 @@ TEST(Crossings, TheLaterOfTwoCrossingTrianglesGoes)
     EXPECT_TRUE(fill_suspect.mesh.inMesh(2)) << with_grid;
 
     CrossingPair boundary_suspect(with_grid);
-    boundary_suspect.mesh.leaveMesh(1);  // triangle 1 goes back to the cocone group:
+    boundary_suspect.mesh.leaveMesh(1); // triangle 1 goes back to the cocone group:
     boundary_suspect.mesh.enterMesh(boundary_suspect.mesh.addToPool({3, 4, 5}, 0));
     boundary_suspect.boundary[0] = 1; // only triangle 0 is suspect now
     PinchResolver other_pinches(boundary_suspect.mesh);
@@ -922,12 +1206,12 @@ TEST(Insertion, SampleOverAFilledHoleIsPutBack)
             1u);
   EXPECT_GT(mesh.meshDegree(v), 0u);
   EXPECT_EQ(mesh.meshDegree(duplicate), 0u);
-  const pcl::cocone::MeshTopology topology =
-      pcl::cocone::analyzeTriangleMesh(meshTriangles(mesh));
+  const MeshTopology topology = analyzeTriangleMesh(meshTriangles(mesh));
   EXPECT_TRUE(topology.isClosed());
   EXPECT_TRUE(topology.isConsistentlyOriented());
   EXPECT_EQ(topology.vertices, points.size() - 1); // all but the duplicate
-  EXPECT_EQ(pcl::cocone::countSelfIntersections(mesh.points(), meshTriangles(mesh)), 0u);
+  EXPECT_EQ(pcl::cocone::countSelfIntersections(mesh.points(), meshTriangles(mesh)),
+            0u);
   // Nothing is left to put back.
   EXPECT_EQ(pcl::cocone::detail::insertUnusedSamples(mesh, extraction.voronoi, spacing),
             0u);
@@ -975,296 +1259,11 @@ TEST(Orientation, ClosedComponentsFacingInwardAreFlipped)
   for (std::uint32_t t = 16; t < 24; ++t)
     EXPECT_TRUE(facing_out(t, 10)) << t;
   const std::vector<TriangleIndices> triangles = meshTriangles(mesh);
-  const pcl::cocone::MeshTopology topology = pcl::cocone::analyzeTriangleMesh(triangles);
+  const MeshTopology topology = analyzeTriangleMesh(triangles);
   EXPECT_TRUE(topology.isConsistentlyOriented());
   EXPECT_EQ(topology.components, 3u);
   const std::vector<TriangleIndices> first(triangles.begin(), triangles.begin() + 8);
   EXPECT_GT(pcl::cocone::test::signedVolume(points, first), 0);
-}
-
-// --- box grid --------------------------------------------------------------------
-
-std::vector<std::uint32_t>
-bruteForceOverlapping(const std::vector<Box>& boxes, const Box& query)
-{
-  std::vector<std::uint32_t> found;
-  for (std::uint32_t i = 0; i < boxes.size(); ++i)
-    if (!boxesApart(boxes[i], query))
-      found.push_back(i);
-  return found;
-}
-
-TEST(BoxGrid, TouchingBoxesMeetAndSeparatedOnesDoNot)
-{
-  const Box unit{Vector(0, 0, 0), Vector(1, 1, 1)};
-  EXPECT_FALSE(boxesApart(unit, {Vector(1, 1, 1), Vector(2, 2, 2)})); // a corner
-  EXPECT_FALSE(boxesApart(unit, {Vector(1, 0.5, -3), Vector(5, 0.6, 3)})); // a face
-  EXPECT_TRUE(boxesApart(unit, {Vector(1 + 1e-12, 0, 0), Vector(2, 1, 1)}));
-  EXPECT_TRUE(boxesApart(unit, {Vector(0, 0, -2), Vector(1, 1, -1e-12)}));
-}
-
-// Random boxes of many sizes (some over more cells than the grid lists, some flat, some
-// at negative coordinates), against queries from a point to wider than everything.
-TEST(BoxGrid, FindsExactlyTheBoxesThatMeetAQuery)
-{
-  std::mt19937 random(5);
-  std::uniform_real_distribution<double> position(-20, 20), size(0, 1);
-  std::vector<Box> boxes;
-  double edges = 0;
-  for (int i = 0; i < 2000; ++i) {
-    const Vector low(position(random), position(random), position(random));
-    Vector extent(size(random), size(random), size(random));
-    if (i % 50 == 0)
-      extent *= 40; // a long triangle: kept among the large ones
-    if (i % 7 == 0)
-      extent.z() = 0; // flat
-    boxes.push_back({low, low + extent});
-    edges += extent.norm();
-  }
-  // The touching cases, exactly on a cell's side and on a box's.
-  boxes.push_back({Vector(0, 0, 0), Vector(1, 1, 1)});
-  boxes.push_back({Vector(1, 1, 1), Vector(2, 2, 2)});
-  BoxGrid grid(BoxGrid::cellSideFor(edges, boxes.size()));
-  ASSERT_GT(grid.cellSide(), 0);
-  for (std::uint32_t i = 0; i < boxes.size(); ++i)
-    grid.insert(i, boxes[i]);
-
-  std::vector<Box> queries = {{Vector(1, 1, 1), Vector(1, 1, 1)}, // a point
-                              {Vector(-1, -1, -1), Vector(0, 0, 0)},
-                              {Vector(-50, -50, -50), Vector(50, 50, 50)}}; // everything
-  for (int q = 0; q < 300; ++q) {
-    const Vector low(position(random), position(random), position(random));
-    queries.push_back({low, low + 6 * Vector(size(random), size(random), size(random))});
-  }
-  const auto box_of = [&](std::uint32_t i) -> const Box& { return boxes[i]; };
-  std::size_t found_any = 0;
-  for (const Box& query : queries) {
-    const std::vector<std::uint32_t> expected = bruteForceOverlapping(boxes, query);
-    found_any += !expected.empty();
-
-    std::vector<std::uint32_t> overlapping;
-    grid.forEachOverlapping(query, box_of,
-                            [&](std::uint32_t i) { overlapping.push_back(i); });
-    std::sort(overlapping.begin(), overlapping.end());
-    EXPECT_EQ(overlapping, expected); // each once: no repeats
-
-    // forEachNear gives a superset (the entries of the cells met): sifted by box, the
-    // same set.
-    std::vector<std::uint32_t> near;
-    grid.forEachNear(query, box_of, [&](std::uint32_t i) { near.push_back(i); });
-    std::sort(near.begin(), near.end());
-    near.erase(std::unique(near.begin(), near.end()), near.end());
-    EXPECT_TRUE(std::includes(near.begin(), near.end(), expected.begin(), expected.end()));
-    near.erase(std::remove_if(near.begin(), near.end(),
-                              [&](std::uint32_t i) { return boxesApart(boxes[i], query); }),
-               near.end());
-    EXPECT_EQ(near, expected);
-  }
-  EXPECT_GT(found_any, queries.size() / 2); // the queries are not all in empty space
-}
-
-TEST(BoxGrid, CellSideIsTwiceTheMeanEdge)
-{
-  EXPECT_DOUBLE_EQ(BoxGrid::cellSideFor(10, 5), 4);
-  EXPECT_DOUBLE_EQ(BoxGrid::cellSideFor(0, 5), 1); // nothing to measure: any side
-  EXPECT_DOUBLE_EQ(BoxGrid::cellSideFor(3, 0), 1);
-}
-
-// --- least-area fill -------------------------------------------------------------
-
-const auto kNoEdge = [](std::uint32_t, std::uint32_t) { return false; };
-
-/** Whether the fill continues the surface across the loop: every loop edge a -> b is
- * run b -> a by exactly one fill triangle. */
-bool
-continuesAcrossLoop(const std::vector<std::uint32_t>& loop,
-                    const std::vector<TriangleIndices>& fill)
-{
-  for (std::size_t k = 0; k < loop.size(); ++k) {
-    const std::uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
-    int runs = 0;
-    for (const TriangleIndices& t : fill)
-      for (int e = 0; e < 3; ++e)
-        runs += t[e] == b && t[(e + 1) % 3] == a;
-    if (runs != 1)
-      return false;
-  }
-  return true;
-}
-
-TEST(LeastAreaFill, PlanarSquareGivesTwoTrianglesOfItsArea)
-{
-  const Points points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
-  const std::vector<std::uint32_t> loop = {0, 1, 2, 3};
-  std::vector<TriangleIndices> fill;
-  std::vector<std::uint32_t> blockers;
-  LeastAreaFillScratch scratch;
-  ASSERT_TRUE(fillLoopByLeastArea(points, loop, kNoEdge, {}, fill, blockers, scratch));
-  EXPECT_EQ(fill.size(), 2u);
-  EXPECT_DOUBLE_EQ(areaOf(points, fill), 1);
-  EXPECT_TRUE(continuesAcrossLoop(loop, fill));
-  EXPECT_TRUE(blockers.empty());
-
-  // Either diagonal will do; forbid the one chosen, and the other one is used.
-  std::set<std::uint32_t> first(fill[0].begin(), fill[0].end());
-  std::set<std::uint32_t> second(fill[1].begin(), fill[1].end());
-  std::vector<std::uint32_t> diagonal;
-  std::set_intersection(first.begin(), first.end(), second.begin(), second.end(),
-                        std::back_inserter(diagonal));
-  ASSERT_EQ(diagonal.size(), 2u);
-  const auto is_that_diagonal = [&](std::uint32_t a, std::uint32_t b) {
-    return std::minmax(a, b) == std::minmax(diagonal[0], diagonal[1]);
-  };
-  ASSERT_TRUE(
-      fillLoopByLeastArea(points, loop, is_that_diagonal, {}, fill, blockers, scratch));
-  ASSERT_EQ(fill.size(), 2u);
-  EXPECT_DOUBLE_EQ(areaOf(points, fill), 1);
-  for (const TriangleIndices& t : fill)
-    EXPECT_FALSE(std::count(t.begin(), t.end(), diagonal[0]) &&
-                 std::count(t.begin(), t.end(), diagonal[1]));
-}
-
-// A chevron (0, 0) (2, 1) (4, 0) (2, 3), reflex at (2, 1): the inner diagonal gives its
-// area, 4; the outer one folds over it, 8.
-TEST(LeastAreaFill, NonConvexLoopUsesItsInnerDiagonal)
-{
-  const Points points = {{0, 0, 0}, {2, 1, 0}, {4, 0, 0}, {2, 3, 0}};
-  const std::vector<std::uint32_t> loop = {0, 1, 2, 3};
-  std::vector<TriangleIndices> fill;
-  std::vector<std::uint32_t> blockers;
-  LeastAreaFillScratch scratch;
-  ASSERT_TRUE(fillLoopByLeastArea(points, loop, kNoEdge, {}, fill, blockers, scratch));
-  EXPECT_DOUBLE_EQ(areaOf(points, fill), 4);
-  EXPECT_TRUE(continuesAcrossLoop(loop, fill));
-  const auto inner_is_edge = [](std::uint32_t a, std::uint32_t b) {
-    return std::minmax(a, b) == std::minmax(1u, 3u);
-  };
-  ASSERT_TRUE(
-      fillLoopByLeastArea(points, loop, inner_is_edge, {}, fill, blockers, scratch));
-  EXPECT_DOUBLE_EQ(areaOf(points, fill), 8);
-
-  const std::vector<std::uint32_t> too_short = {0, 1};
-  EXPECT_FALSE(fillLoopByLeastArea(points, too_short, kNoEdge, {}, fill, blockers,
-                                   scratch));
-  EXPECT_TRUE(fill.empty());
-}
-
-/** The least area over every triangulation of loop[i..k] closed by the chord (i, k)
- * that uses no edge of \a is_edge: enumerated without memory, as a reference. */
-double
-bruteForceLeastArea(const Points& points, const std::vector<std::uint32_t>& loop,
-                    const std::function<bool(std::uint32_t, std::uint32_t)>& is_edge,
-                    std::size_t i, std::size_t k)
-{
-  if (k == i + 1)
-    return 0;
-  const std::size_t m = loop.size();
-  if (!(i == 0 && k == m - 1) && is_edge(loop[i], loop[k]))
-    return std::numeric_limits<double>::infinity();
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t j = i + 1; j < k; ++j)
-    best = std::min(best, bruteForceLeastArea(points, loop, is_edge, i, j) +
-                              bruteForceLeastArea(points, loop, is_edge, j, k) +
-                              areaOf(points, {loop[j], loop[i], loop[k]}));
-  return best;
-}
-
-TEST(LeastAreaFill, RandomSkewLoopsGetTheLeastArea)
-{
-  std::mt19937 random(3);
-  std::uniform_real_distribution<double> jitter(-0.4, 0.4);
-  LeastAreaFillScratch scratch; // reused across loops of different sizes, as the mesher does
-  for (int trial = 0; trial < 40; ++trial) {
-    const std::size_t m = 4 + trial % 6;
-    Points points;
-    std::vector<std::uint32_t> loop;
-    for (std::size_t k = 0; k < m; ++k) {
-      const double angle = 2 * M_PI * static_cast<double>(k) / static_cast<double>(m);
-      points.emplace_back(std::cos(angle) + jitter(random),
-                          std::sin(angle) + jitter(random), jitter(random));
-      loop.push_back(static_cast<std::uint32_t>(m - 1 - k)); // any numbering
-    }
-    std::set<std::pair<std::uint32_t, std::uint32_t>> edges; // a few diagonals taken
-    for (int e = 0; e < trial % 3; ++e) {
-      const auto a = static_cast<std::uint32_t>(random() % m);
-      const auto b = static_cast<std::uint32_t>((a + 2 + random() % (m - 3)) % m);
-      edges.insert(std::minmax(a, b));
-    }
-    const auto is_edge = [&](std::uint32_t a, std::uint32_t b) {
-      return edges.count(std::minmax(a, b)) > 0;
-    };
-    const double expected = bruteForceLeastArea(points, loop, is_edge, 0, m - 1);
-    std::vector<TriangleIndices> fill;
-    std::vector<std::uint32_t> blockers;
-    const bool found =
-        fillLoopByLeastArea(points, loop, is_edge, {}, fill, blockers, scratch);
-    ASSERT_EQ(found, expected < std::numeric_limits<double>::infinity()) << trial;
-    if (!found)
-      continue;
-    EXPECT_EQ(fill.size(), m - 2) << trial;
-    EXPECT_NEAR(areaOf(points, fill), expected, 1e-12) << trial;
-    EXPECT_TRUE(continuesAcrossLoop(loop, fill)) << trial;
-    for (const TriangleIndices& t : fill)
-      for (int e = 0; e < 3; ++e)
-        EXPECT_FALSE(is_edge(t[e], t[(e + 1) % 3])) << trial;
-  }
-}
-
-/** A small triangle through the centroid of triangle \a t, across it; its corners are
- * appended to \a points. */
-TriangleIndices
-spikeThrough(Points& points, const TriangleIndices& t)
-{
-  const Vector c = (points[t[0]] + points[t[1]] + points[t[2]]) / 3;
-  const Vector n =
-      (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).normalized();
-  const Vector u = (points[t[1]] - points[t[0]]).normalized();
-  const auto first = static_cast<std::uint32_t>(points.size());
-  points.push_back(c - 0.05 * n + 0.02 * u);
-  points.push_back(c - 0.05 * n - 0.02 * u);
-  points.push_back(c + 0.05 * n);
-  return {first, first + 1, first + 2};
-}
-
-// A skew quadrilateral has two fills, one per diagonal. An obstacle through the smaller
-// one gives the other; obstacles through both give none, and name the two.
-TEST(LeastAreaFill, ObstaclesAreAvoidedOrNamed)
-{
-  Points points = {{0, 0, 0}, {1, 0, 0.8}, {1.2, 1.1, 0}, {0, 1, 0.3}};
-  const std::vector<std::uint32_t> loop = {0, 1, 2, 3};
-  // As the fill orients them (loop[j], loop[i], loop[k]).
-  const std::vector<TriangleIndices> by_02 = {{1, 0, 2}, {2, 0, 3}};
-  const std::vector<TriangleIndices> by_13 = {{2, 1, 3}, {1, 0, 3}};
-  const double area_02 = areaOf(points, by_02), area_13 = areaOf(points, by_13);
-  ASSERT_GT(std::abs(area_02 - area_13), 0.01);
-  const auto& smaller = area_02 < area_13 ? by_02 : by_13;
-  const auto& larger = area_02 < area_13 ? by_13 : by_02;
-
-  std::vector<TriangleIndices> fill;
-  std::vector<std::uint32_t> blockers;
-  LeastAreaFillScratch scratch;
-  ASSERT_TRUE(fillLoopByLeastArea(points, loop, kNoEdge, {}, fill, blockers, scratch));
-  EXPECT_DOUBLE_EQ(areaOf(points, fill), areaOf(points, smaller));
-
-  std::vector<TriangleIndices> obstacles = {spikeThrough(points, smaller[0])};
-  const auto far = static_cast<std::uint32_t>(points.size());
-  points.push_back({5, 5, 5});
-  points.push_back({6, 5, 5});
-  points.push_back({5, 6, 5});
-  obstacles.push_back({far, far + 1, far + 2}); // in the way of nothing
-  for (const TriangleIndices& t : larger) // the test's premise
-    ASSERT_FALSE(pcl::cocone::trianglesIntersect(points, t, obstacles[0]));
-  ASSERT_TRUE(pcl::cocone::trianglesIntersect(points, smaller[0], obstacles[0]));
-  ASSERT_TRUE(
-      fillLoopByLeastArea(points, loop, kNoEdge, obstacles, fill, blockers, scratch));
-  EXPECT_DOUBLE_EQ(areaOf(points, fill), areaOf(points, larger));
-  EXPECT_TRUE(blockers.empty()); // found within the rounds
-
-  obstacles.push_back(spikeThrough(points, larger[0]));
-  EXPECT_FALSE(
-      fillLoopByLeastArea(points, loop, kNoEdge, obstacles, fill, blockers, scratch));
-  EXPECT_TRUE(fill.empty());
-  EXPECT_EQ(blockers, (std::vector<std::uint32_t>{0, 2})); // not the far one
 }
 
 } // namespace

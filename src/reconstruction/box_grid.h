@@ -60,7 +60,8 @@ public:
     return cell_;
   }
 
-  /** Makes room for \a cells occupied cells: without it the map rehashes as it grows. */
+  /** Makes room for \a cells occupied cells: without it the map rehashes as it
+   * grows. */
   void
   reserve(std::size_t cells)
   {
@@ -156,7 +157,8 @@ private:
   {
     double count = 1;
     for (int axis = 0; axis < 3; ++axis)
-      count *= std::floor(box.high[axis] / cell_) - std::floor(box.low[axis] / cell_) + 1;
+      count *=
+          std::floor(box.high[axis] / cell_) - std::floor(box.low[axis] / cell_) + 1;
     return count;
   }
 
@@ -182,7 +184,7 @@ private:
   }
 
   double cell_;
-  std::unordered_map<CellKey, std::vector<std::uint32_t>> cells_;
+  std::unordered_map<CellKey, std::vector<std::uint32_t> > cells_;
   std::vector<std::uint32_t> large_; // entries over more than kMostCells cells
   std::vector<Box> large_boxes_;     // their boxes, in the same order
 };

@@ -38,7 +38,8 @@ circumradius(const Vector& a, const Vector& b, const Vector& c)
 // paper's pseudo-code) adds many non-manifold edges. So a triangle is a candidate when
 // every non-boundary vertex marks it, and it has one.
 std::size_t
-collectCandidates(const VoronoiCocone& voronoi, const std::vector<std::uint8_t>& boundary,
+collectCandidates(const VoronoiCocone& voronoi,
+                  const std::vector<std::uint8_t>& boundary,
                   MeshState& mesh)
 {
   // Nearly every marked triangle of a well sampled surface is a candidate.

@@ -20,7 +20,8 @@ namespace detail {
  * is a candidate when every vertex not flagged in \a boundary marks it, and it has one
  * such vertex. Returns the number of candidates. */
 std::size_t
-collectCandidates(const VoronoiCocone& voronoi, const std::vector<std::uint8_t>& boundary,
+collectCandidates(const VoronoiCocone& voronoi,
+                  const std::vector<std::uint8_t>& boundary,
                   MeshState& mesh);
 
 /** Rejects the candidates of \a mesh that form lids over holes (see the source), with

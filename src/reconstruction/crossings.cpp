@@ -38,7 +38,7 @@ void
 findCrossingsBySuspectGrid(const MeshState& mesh, unsigned threads,
                            const std::vector<std::uint32_t>& suspects,
                            const Crosses& crosses,
-                           std::vector<std::vector<std::uint32_t>>& crossing)
+                           std::vector<std::vector<std::uint32_t> >& crossing)
 {
   const std::vector<Vector>& points = mesh.points();
   double edges = 0;
@@ -52,7 +52,7 @@ findCrossingsBySuspectGrid(const MeshState& mesh, unsigned threads,
   }
 
   using Pair = std::pair<std::uint32_t, std::uint32_t>; // suspect position, triangle
-  tbb::enumerable_thread_specific<std::vector<Pair>> found;
+  tbb::enumerable_thread_specific<std::vector<Pair> > found;
   const auto ask = [&](const tbb::blocked_range<std::uint32_t>& range) {
     std::vector<Pair>& pairs = found.local();
     for (std::uint32_t u = range.begin(); u != range.end(); ++u) {
@@ -115,8 +115,7 @@ insertUnusedSamples(MeshState& mesh, const VoronoiCocone& voronoi,
     // neighbours are far.
     const Vector p = points[v];
     const auto reach = [&](const TriangleIndices& o) {
-      return kInsertionReach *
-             std::min({spacing[o[0]], spacing[o[1]], spacing[o[2]]});
+      return kInsertionReach * std::min({spacing[o[0]], spacing[o[1]], spacing[o[2]]});
     };
     double best_distance = std::numeric_limits<double>::infinity();
     std::uint32_t best = 0;
@@ -180,7 +179,8 @@ insertUnusedSamples(MeshState& mesh, const VoronoiCocone& voronoi,
     Box splits_box = mesh.boundingBox(splits[0]);
     for (const TriangleIndices& split : splits) {
       const Box box = mesh.boundingBox(split);
-      splits_box = {splits_box.low.cwiseMin(box.low), splits_box.high.cwiseMax(box.high)};
+      splits_box = {splits_box.low.cwiseMin(box.low),
+                    splits_box.high.cwiseMax(box.high)};
     }
     bool crossing = false;
     for (const std::uint32_t t : nearby) {
@@ -199,10 +199,8 @@ insertUnusedSamples(MeshState& mesh, const VoronoiCocone& voronoi,
       continue;
     for (const std::uint32_t t : replaced)
       mesh.leaveMesh(t);
-    for (const TriangleIndices& split : splits) {
-      mesh.addToPool(split, kPolygonGroup);
-      mesh.enterMesh(static_cast<std::uint32_t>(mesh.poolSize() - 1));
-    }
+    for (const TriangleIndices& split : splits)
+      mesh.enterMesh(mesh.addToPool(split, kPolygonGroup));
     ++inserted;
   }
   return inserted;
@@ -224,7 +222,7 @@ removeCrossings(MeshState& mesh, PinchResolver& pinches,
   for (std::uint32_t t = 0; t < mesh.poolSize(); ++t) {
     const TriangleIndices& o = mesh.oriented(t);
     if (mesh.inMesh(t) && (mesh.group(t) != kCoconeGroup || boundary[o[0]] ||
-                                 boundary[o[1]] || boundary[o[2]])) {
+                           boundary[o[1]] || boundary[o[2]])) {
       suspects.push_back(t);
       is_suspect[t] = 1;
     }
@@ -240,7 +238,7 @@ removeCrossings(MeshState& mesh, PinchResolver& pinches,
   // Delaunay neighbours instead read some 30 incidence lists per suspect and cost twice
   // as much (PCL's table scene: 1.1 s against 0.55 s), and could miss a crossing
   // triangle with no corner there.
-  std::vector<std::vector<std::uint32_t>> crossing(suspects.size());
+  std::vector<std::vector<std::uint32_t> > crossing(suspects.size());
   const auto crosses = [&](std::uint32_t t, const Box& t_box, std::uint32_t u,
                            const Box& u_box) {
     // Most are apart, which their boxes tell without the call (the exact test starts
@@ -250,7 +248,7 @@ removeCrossings(MeshState& mesh, PinchResolver& pinches,
   };
   if (mesh.hasGrid()) {
     // The fills built the mesh's grid: each suspect asks it.
-    tbb::enumerable_thread_specific<std::vector<std::uint32_t>> scratch;
+    tbb::enumerable_thread_specific<std::vector<std::uint32_t> > scratch;
     const auto findCrossings = [&](const tbb::blocked_range<std::size_t>& range) {
       std::vector<std::uint32_t>& nearby = scratch.local();
       for (std::size_t i = range.begin(); i != range.end(); ++i) {

@@ -56,8 +56,7 @@ PolygonFiller::fill(std::vector<SampleIndex>& loop, double spacing)
       break;
     added.clear();
     for (const TriangleIndices& t : fill) {
-      mesh_.addToPool(t, kPolygonGroup);
-      added.push_back(static_cast<std::uint32_t>(mesh_.poolSize() - 1));
+      added.push_back(mesh_.addToPool(t, kPolygonGroup));
       mesh_.enterMesh(added.back());
     }
     closed = mesh_.closes(loop, added);
@@ -107,8 +106,8 @@ PolygonFiller::fillByLeastArea(const std::vector<SampleIndex>& loop,
     mesh_.meshOnEdge(a, b, on_edge);
     return !on_edge.empty();
   };
-  const bool found = fillLoopByLeastArea(mesh_.points(), loop, is_edge, obstacles_, fill,
-                                         blockers, scratch_);
+  const bool found = fillLoopByLeastArea(mesh_.points(), loop, is_edge, obstacles_,
+                                         fill, blockers, scratch_);
   for (std::uint32_t& blocker : blockers) // positions in near_, sorted as near_ is
     blocker = near_[blocker];
   return found;

@@ -130,7 +130,8 @@ fillLoopByLeastArea(const std::vector<Vector>& points,
     for (std::size_t k = i + 2; k < m; ++k)
       if (new_diagonal[i * m + k])
         for (std::size_t j = i + 1; j < k; ++j) {
-          // The loop runs a -> b as its mesh triangles traverse it; the fill runs b -> a.
+          // The loop runs a -> b as its mesh triangles traverse it; the fill runs
+          // b -> a.
           const TriangleIndices triangle = {loop[j], loop[i], loop[k]};
           areas[at(i, j, k)] = 0.5 * orientedNormal(points, triangle).norm();
         }
@@ -178,7 +179,8 @@ fillLoopByLeastArea(const std::vector<Vector>& points,
             const std::uint8_t verdict = verdicts[at(i, j, k)];
             if (verdict == kCrossing) {
               const auto [from, to] = crossed_by.at(at(i, j, k));
-              blockers.insert(blockers.end(), crossed.begin() + from, crossed.begin() + to);
+              blockers.insert(blockers.end(), crossed.begin() + from,
+                              crossed.begin() + to);
               continue;
             }
             if (verdict == kUntested && blocked({loop[j], loop[i], loop[k]}))
@@ -244,7 +246,8 @@ fillLoopByLeastArea(const std::vector<Vector>& points,
       for (const auto& [from, to] : {std::pair{i, j}, std::pair{j, k}, std::pair{i, k}})
         if (to > from + 1 && !(from == 0 && to == m - 1) && usable[from * m + to])
           for (std::size_t b = first; b < crossed.size(); ++b)
-            if (segmentCrossesTriangle(points, loop[from], loop[to], obstacles[crossed[b]])) {
+            if (segmentCrossesTriangle(points, loop[from], loop[to],
+                                       obstacles[crossed[b]])) {
               usable[from * m + to] = 0;
               break;
             }

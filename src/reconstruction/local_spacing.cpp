@@ -47,7 +47,8 @@ measureLocalSpacing(const VoronoiCocone& voronoi)
 }
 
 double
-typicalSpacing(const std::vector<double>& spacing, const std::vector<SampleIndex>& samples)
+typicalSpacing(const std::vector<double>& spacing,
+               const std::vector<SampleIndex>& samples)
 {
   std::vector<double> values;
   values.reserve(samples.size());
@@ -67,7 +68,10 @@ typicalSpacing(const std::vector<double>& spacing, const std::vector<SampleIndex
 // scans the fills of true holes are fans of long, thin triangles whose circumradii are
 // no larger than those of many fills of small gaps; this measure separates them).
 bool
-isTrueBoundary(double area, double perimeter, double spacing, double true_boundary_ratio)
+isTrueBoundary(double area,
+               double perimeter,
+               double spacing,
+               double true_boundary_ratio)
 {
   return perimeter > 0 && 2 * area / perimeter > true_boundary_ratio * spacing;
 }

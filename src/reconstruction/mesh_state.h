@@ -122,7 +122,9 @@ public:
   {
     return static_cast<std::uint32_t>(group_start_.size() - 1);
   }
-  /** Group \a g spans the ids [groupBegin(g), groupEnd(g)). */
+  /** Group \a g's triangles have the ids [groupBegin(g), groupEnd(g)). The range of
+   * the first hole of a round of stitching also holds the kPolygonGroup triangles
+   * made since the previous round (never candidates: they enter the mesh at once). */
   std::uint32_t
   groupBegin(std::uint32_t g) const
   {
@@ -368,7 +370,7 @@ public:
   }
   /** The boundary loops of the mesh, each a cycle a -> b -> ... as the mesh
    * triangles traverse its edges. */
-  std::vector<std::vector<SampleIndex>>
+  std::vector<std::vector<SampleIndex> >
   traceLoops() const;
   /** The boundary loop through \a start (see the source); false if there is none. */
   bool
@@ -448,7 +450,7 @@ private:
   // Incidence lists: the triangles at v are incidence_[offsets_[v] .. offsets_[v + 1]).
   std::vector<std::uint32_t> offsets_;
   std::vector<Incidence> incidence_;
-  std::unordered_map<SampleIndex, std::vector<std::uint32_t>> late_; // added since
+  std::unordered_map<SampleIndex, std::vector<std::uint32_t> > late_; // added since
 
   std::vector<std::uint32_t> mesh_degree_; // mesh triangles at each sample
   // Sum of the oriented normals (twice the areas) of the mesh triangles at each sample:
@@ -459,7 +461,7 @@ private:
   bool log_changes_ = false; // whether enterMesh and leaveMesh log to changed_
   // Triangles that entered or left the mesh, each with whether it was in the mesh
   // before.
-  std::vector<std::pair<std::uint32_t, bool>> changed_;
+  std::vector<std::pair<std::uint32_t, bool> > changed_;
 
   // A uniform grid over the mesh triangles' bounding boxes, built (buildGrid) by the
   // first check that added triangles cross nothing (a fill across a hole can meet a

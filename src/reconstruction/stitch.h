@@ -41,7 +41,7 @@ public:
   /** Offers every loop of \a loops (boundary loops of the mesh, as its triangles run
    * them); keeps in \a loops those that stay open. */
   void
-  stitch(std::vector<std::vector<SampleIndex>>& loops);
+  stitch(std::vector<std::vector<SampleIndex> >& loops);
 
   /** Holes closed so far. */
   std::size_t
@@ -69,7 +69,7 @@ private:
   Walker& walker_;
   PolygonFiller& filler_;
   const double true_boundary_ratio_;
-  std::vector<std::vector<SampleIndex>> tried_; // vertex sets of the loops offered
+  std::vector<std::vector<SampleIndex> > tried_; // vertex sets of the loops offered
   std::size_t stitched_holes_ = 0, stitched_triangles_ = 0;
 };
 

@@ -119,8 +119,8 @@ Walker::step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch)
     }
   }
   if (!x_attached && !allow_pinch) {
-    mesh_.noteMaybeOpen(a, b); // unless a forced step closes it later
-    return {Step::pinch, best};     // x has a fan elsewhere: it would pinch, for now
+    mesh_.noteMaybeOpen(a, b);  // unless a forced step closes it later
+    return {Step::pinch, best}; // x has a fan elsewhere: it would pinch, for now
   }
   if (!x_attached)
     pinches_.note(x); // PinchResolver::resolve() looks at it again
@@ -274,7 +274,7 @@ Walker::seedTriangle(std::uint32_t& seed)
     if (mesh_.meshDegree(v) != 0)
       continue; // a free triangle has no vertex in the mesh
     bool has_free = false;
-    for (const detail::MeshState::Incidence& at : mesh_.listedAround(v))
+    for (const MeshState::Incidence& at : mesh_.listedAround(v))
       if (is_free(at.triangle)) {
         has_free = true;
         break;
@@ -290,7 +290,7 @@ Walker::seedTriangle(std::uint32_t& seed)
   std::size_t best_violations = std::numeric_limits<std::size_t>::max();
   double best_alignment = -1;
   bool found = false;
-  for (const detail::MeshState::Incidence& at_extreme : mesh_.listedAround(extreme)) {
+  for (const MeshState::Incidence& at_extreme : mesh_.listedAround(extreme)) {
     const std::uint32_t t = at_extreme.triangle;
     const TriangleIndices& tri = mesh_.triangle(t);
     if (!is_free(t))
@@ -302,7 +302,7 @@ Walker::seedTriangle(std::uint32_t& seed)
     if (normal.x() < 0)
       normal = -normal;
     std::size_t violations = 0;
-    for (const detail::MeshState::Incidence& at : mesh_.listedAround(extreme)) {
+    for (const MeshState::Incidence& at : mesh_.listedAround(extreme)) {
       const std::uint32_t s = at.triangle;
       if (s == t || mesh_.state(s) != kCandidate || mesh_.group(s) != kCoconeGroup)
         continue;
