@@ -24,6 +24,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -898,6 +899,77 @@ TEST(Walk, StepTakesTheOutermostCandidate)
   EXPECT_EQ(added, std::vector<std::uint32_t>{inward.hole_face});
 }
 
+/** A mesh triangle t = (a, b, c) = (0, 1, 2) facing +z, its edge a -> b on the y axis,
+ * with a large triangle at a and one at b facing -x (or +x) that dominate the fans
+ * there, and three candidates (group 1) on the edge a -> b; the apex of candidate k is
+ * point k: above t within a right angle of it (kFolded, pi / 4 from t), above the
+ * edge's other side (kSteep, 3 pi / 4) and flat (kFlat, pi). */
+struct CreaseEdge
+{
+  static constexpr std::uint32_t kT = 0, kFolded = 3, kSteep = 4, kFlat = 5;
+  const Points points = {{0, 0, 0},
+                         {0, 1, 0},
+                         {-1, 0.5, 0}, // t: a, b, c
+                         {-std::sqrt(0.5), 0.5, std::sqrt(0.5)},
+                         {std::sqrt(0.5), 0.5, std::sqrt(0.5)},
+                         {1, 0.5, 0},
+                         {0, 0, -3},
+                         {0, -3, 0},
+                         {0, 1, -3},
+                         {0, 4, 0}};
+  MeshState mesh{points};
+
+  explicit CreaseEdge(bool fans_facing_minus_x)
+  {
+    mesh.addToPool({0, 1, 2}, kCoconeGroup);
+    mesh.addToPool(fans_facing_minus_x ? TriangleIndices{0, 6, 7}
+                                       : TriangleIndices{0, 7, 6},
+                   kCoconeGroup);
+    mesh.addToPool(fans_facing_minus_x ? TriangleIndices{1, 9, 8}
+                                       : TriangleIndices{1, 8, 9},
+                   kCoconeGroup);
+    mesh.closeGroup();
+    for (const std::uint32_t apex : {kFolded, kSteep, kFlat}) // triangles 3, 4, 5
+      mesh.addToPool({0, 1, apex}, 1);
+    mesh.closeGroup();
+    mesh.rebuildIncidence();
+    for (std::uint32_t k = 0; k < 3; ++k)
+      mesh.enterMesh(k);
+  }
+
+  /** The triangles a walk across a -> b adds. */
+  std::vector<std::uint32_t>
+  walk()
+  {
+    std::vector<Walker::Front> frontier = {{kT, 0}};
+    PinchResolver pinches(mesh);
+    std::vector<std::uint32_t> added;
+    Walker(mesh, pinches, 1).walk(frontier, 1, added);
+    return added;
+  }
+};
+
+// Within a right angle of the mesh triangle t, a candidate folds back onto t and is
+// never taken, even where the fans around the edge (facing -x) do not call it turned
+// over: the steep one comes next by rotation. Where the fans face +x the steep one
+// faces away from them, and the flat one is taken.
+TEST(Walk, StepNeverFoldsBackNorTurnsOver)
+{
+  CreaseEdge minus_x(true);
+  ASSERT_FALSE(minus_x.mesh.turnsOver(0, 1, CreaseEdge::kFolded));
+  ASSERT_FALSE(minus_x.mesh.turnsOver(0, 1, CreaseEdge::kSteep));
+  EXPECT_EQ(minus_x.walk(), std::vector<std::uint32_t>{CreaseEdge::kSteep});
+  EXPECT_EQ(minus_x.mesh.oriented(CreaseEdge::kSteep),
+            (TriangleIndices{1, 0, CreaseEdge::kSteep}));
+
+  CreaseEdge plus_x(false);
+  ASSERT_TRUE(plus_x.mesh.turnsOver(0, 1, CreaseEdge::kSteep));
+  ASSERT_FALSE(plus_x.mesh.turnsOver(0, 1, CreaseEdge::kFlat));
+  EXPECT_EQ(plus_x.walk(), std::vector<std::uint32_t>{CreaseEdge::kFlat});
+  EXPECT_EQ(plus_x.mesh.oriented(CreaseEdge::kFlat),
+            (TriangleIndices{1, 0, CreaseEdge::kFlat}));
+}
+
 TEST(Pinches, TheLargestFanStays)
 {
   const Points points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
@@ -1215,6 +1287,55 @@ TEST(Insertion, SampleOverAFilledHoleIsPutBack)
   // Nothing is left to put back.
   EXPECT_EQ(pcl::cocone::detail::insertUnusedSamples(mesh, extraction.voronoi, spacing),
             0u);
+}
+
+/** The octahedron in the mesh and one more sample, \a extra, unused. */
+struct OctahedronAndSample
+{
+  Points points = octahedronPoints();
+  VoronoiCocone voronoi;
+  std::unique_ptr<MeshState> mesh;
+
+  explicit OctahedronAndSample(const Vector& extra)
+  {
+    points.push_back(extra);
+    computeDiagram(points, voronoi);
+    mesh = std::make_unique<MeshState>(voronoi.centeredPoints());
+    for (const TriangleIndices& face : octahedronFaces())
+      mesh->addToPool(face, kCoconeGroup);
+    mesh->closeGroup();
+    mesh->rebuildIncidence();
+    for (std::uint32_t t = 0; t < 8; ++t)
+      mesh->enterMesh(t);
+  }
+
+  std::size_t
+  insert() const
+  {
+    const std::vector<double> spacing(points.size(), 1.0); // a reach of 1
+    return pcl::cocone::detail::insertUnusedSamples(*mesh, voronoi, spacing);
+  }
+};
+
+// Just outside a face the sample splits the face in three; just outside an edge it
+// splits the edge, and both its triangles in two.
+TEST(Insertion, SplitsTheNearestTriangleOrEdge)
+{
+  const OctahedronAndSample over_face(Vector(1, 1, 1) / 3 + 0.01 * Vector(1, 1, 1));
+  EXPECT_EQ(over_face.insert(), 1u);
+  EXPECT_EQ(over_face.mesh->meshDegree(6), 3u);
+  const OctahedronAndSample by_edge(Vector(0.5, 0.5, 0) + 0.01 * Vector(1, 1, 0));
+  EXPECT_EQ(by_edge.insert(), 1u);
+  EXPECT_EQ(by_edge.mesh->meshDegree(6), 4u);
+  for (const OctahedronAndSample* shape : {&over_face, &by_edge}) {
+    const std::vector<TriangleIndices> triangles = meshTriangles(*shape->mesh);
+    EXPECT_EQ(triangles.size(), 10u);
+    const MeshTopology topology = analyzeTriangleMesh(triangles);
+    EXPECT_TRUE(topology.isClosed());
+    EXPECT_TRUE(topology.isConsistentlyOriented());
+  }
+  const OctahedronAndSample far(Vector(1, 1, 1) * 2); // beyond the reach
+  EXPECT_EQ(far.insert(), 0u);
 }
 
 // --- orientation ----------------------------------------------------------------
