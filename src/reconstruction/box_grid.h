@@ -101,7 +101,9 @@ public:
 
   /** Calls visit(id) exactly once for every entry whose box, box_of(id), meets \a query
    * (for an id inserted once). An entry listed in several cells is visited in the one
-   * that holds the low corner of the common part of the two boxes. */
+   * that holds the low corner of the common part of the two boxes. (Cell keys keep 21
+   * bits per axis: on a grid over 2^21 cells wide, cells that far apart share a key,
+   * and an entry may be visited twice.) */
   template <typename BoxOf, typename Visit>
   void
   forEachOverlapping(const Box& query, const BoxOf& box_of, Visit&& visit) const
