@@ -1,0 +1,218 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// The writers build the whole file in memory and write it at once: a mesh of a million
+// triangles is a few tens of megabytes, and one write makes a failure simple to report.
+#include <pcl/cocone/io/writers.h>
+
+#include <pcl/io/pcd_io.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+namespace pcl {
+namespace cocone {
+
+namespace {
+
+using Triangle = std::array<std::uint32_t, 3>;
+
+/** Appends the 4 bytes of \a bits least significant first, whatever the host order. */
+void
+appendLittleEndian(std::string& out, std::uint32_t bits)
+{
+  for (int shift = 0; shift < 32; shift += 8)
+    out += static_cast<char>((bits >> shift) & 0xffu);
+}
+
+void
+appendFloat(std::string& out, float value)
+{
+  std::uint32_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  appendLittleEndian(out, bits);
+}
+
+/** Appends the shortest text that reads back as the same float. */
+void
+appendText(std::string& out, float value)
+{
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, result.ptr);
+}
+
+void
+appendText(std::string& out, std::uint64_t value)
+{
+  char buffer[24];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, result.ptr);
+}
+
+std::string
+meshAsPly(const std::vector<std::array<float, 3>>& vertices,
+          const std::vector<Triangle>& triangles,
+          const std::string& creator)
+{
+  std::string out = "ply\nformat binary_little_endian 1.0\n"
+                    "comment written by " + creator + "\n" +
+                    "element vertex " + std::to_string(vertices.size()) + "\n" +
+                    "property float x\nproperty float y\nproperty float z\n" +
+                    "element face " + std::to_string(triangles.size()) + "\n" +
+                    "property list uchar int vertex_indices\nend_header\n";
+  out.reserve(out.size() + 12 * vertices.size() + 13 * triangles.size());
+  for (const auto& v : vertices)
+    for (const float c : v)
+      appendFloat(out, c);
+  for (const Triangle& t : triangles) {
+    out += static_cast<char>(3);
+    for (const std::uint32_t i : t)
+      appendLittleEndian(out, i);
+  }
+  return out;
+}
+
+std::string
+meshAsVtk(const std::vector<std::array<float, 3>>& vertices,
+          const std::vector<Triangle>& triangles,
+          const std::string& creator)
+{
+  std::string out = "# vtk DataFile Version 3.0\nwritten by " + creator +
+                    "\nASCII\nDATASET POLYDATA\nPOINTS " +
+                    std::to_string(vertices.size()) + " float\n";
+  for (const auto& v : vertices) {
+    appendText(out, v[0]);
+    out += ' ';
+    appendText(out, v[1]);
+    out += ' ';
+    appendText(out, v[2]);
+    out += '\n';
+  }
+  out += "POLYGONS " + std::to_string(triangles.size()) + " " +
+         std::to_string(4 * triangles.size()) + "\n";
+  for (const Triangle& t : triangles) {
+    out += '3';
+    for (const std::uint32_t i : t) {
+      out += ' ';
+      appendText(out, std::uint64_t{i});
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+std::string
+meshAsObj(const std::vector<std::array<float, 3>>& vertices,
+          const std::vector<Triangle>& triangles,
+          const std::string& creator)
+{
+  std::string out = "# written by " + creator + ": " +
+                    std::to_string(vertices.size()) + " vertices, " +
+                    std::to_string(triangles.size()) + " triangles\n";
+  for (const auto& v : vertices) {
+    out += 'v';
+    for (const float c : v) {
+      out += ' ';
+      appendText(out, c);
+    }
+    out += '\n';
+  }
+  for (const Triangle& t : triangles) {
+    out += 'f';
+    for (const std::uint32_t i : t) {
+      out += ' ';
+      appendText(out, std::uint64_t{i} + 1); // OBJ counts from 1
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+bool
+failed(std::string* error, const std::string& message)
+{
+  if (error)
+    *error = message;
+  return false;
+}
+
+std::string
+lowerCase(std::string text)
+{
+  std::transform(text.begin(), text.end(), text.begin(), [](char c) {
+    return (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c;
+  });
+  return text;
+}
+
+} // namespace
+
+bool
+writeFile(const std::string& path, const void* data, std::size_t size, std::string* error)
+{
+  errno = 0;
+  std::FILE* file = std::fopen(path.c_str(), "wb");
+  if (!file)
+    return failed(error, "cannot write " + path + ": " + std::strerror(errno));
+  const bool written = std::fwrite(data, 1, size, file) == size;
+  const int write_error = errno;
+  // fclose flushes: a full disk may show up only here.
+  const bool closed = std::fclose(file) == 0;
+  if (!written || !closed) {
+    const int code = written ? errno : write_error;
+    std::remove(path.c_str());
+    return failed(error, "cannot write " + path + ": " +
+                             (code ? std::strerror(code) : "write error"));
+  }
+  if (error)
+    error->clear();
+  return true;
+}
+
+bool
+saveCloud(const std::string& path, const pcl::PCLPointCloud2& cloud, std::string* error)
+{
+  // PCL's PCDWriter::writeBinary creates files with mode 0600, writes through mmap (a
+  // full disk gives "Error during write ()!" without the reason, or SIGBUS), throws
+  // when it cannot open the file and logs its locking at debug level. Its header with
+  // the data written here is the same file, made with the user's umask and failing
+  // with the system's reason.
+  if (cloud.data.size() !=
+      static_cast<std::size_t>(cloud.width) * cloud.height * cloud.point_step)
+    return failed(error, "internal error: the cloud for " + path +
+                             " has an inconsistent data size");
+  std::string contents = pcl::PCDWriter().generateHeaderBinary(
+      cloud, Eigen::Vector4f::Zero(), Eigen::Quaternionf::Identity());
+  contents += "DATA binary\n";
+  contents.append(reinterpret_cast<const char*>(cloud.data.data()), cloud.data.size());
+  return writeFile(path, contents.data(), contents.size(), error);
+}
+
+bool
+saveMesh(const std::string& path,
+         const std::vector<std::array<float, 3>>& vertices,
+         const std::vector<Triangle>& triangles,
+         const std::string& creator,
+         std::string* error)
+{
+  const std::string extension =
+      lowerCase(std::filesystem::path(path).extension().string());
+  std::string contents;
+  if (extension == ".ply")
+    contents = meshAsPly(vertices, triangles, creator);
+  else if (extension == ".vtk")
+    contents = meshAsVtk(vertices, triangles, creator);
+  else if (extension == ".obj")
+    contents = meshAsObj(vertices, triangles, creator);
+  else
+    return failed(error, "unsupported mesh format '" + path +
+                             "' (expected .ply, .vtk, .obj)");
+  return writeFile(path, contents.data(), contents.size(), error);
+}
+
+} // namespace cocone
+} // namespace pcl
