@@ -277,6 +277,49 @@ TEST_F(PointIo, HoppePtsAndExtensionCase)
             (std::vector<float>{1, 2, 3}));
 }
 
+TEST_F(PointIo, HoppeA3dStreamAsWritten)
+{
+  // What WA3dStream writes: comments, colour state before the first point, a normal
+  // before each point, commands between points, and an end record after which the
+  // file is no longer a3d.
+  const std::string file = write("a3d.pts", "# Created by WA3dStream\n"
+                                            "# Created by ioa3d\n"
+                                            "d 0 0 0\n"
+                                            "s 0 0 0\n"
+                                            "g 1 0 0\n"
+                                            "n 0 0 1\n"
+                                            "p 0.5 0.25 0.125\n"
+                                            "n 0 1 0\n"
+                                            "p 1 2 3\n"
+                                            "o 1 1 0\n"
+                                            "O 0 3 0\n"
+                                            "f 0 0 0\n"
+                                            "p -4 5e1 6\n"
+                                            "q 0 0 0\n"
+                                            "no longer a3d\n");
+  const std::vector<float> expected = {0.5f, 0.25f, 0.125f, 1, 2, 3, -4, 50, 6};
+  EXPECT_EQ(coordinates(expectSamples(file, 3)), expected);
+  // The third line was where the reader used to stop ("'d' is not a number").
+  EXPECT_EQ(coordinates(expectSamples(write("d.pts", "# a\n# b\nd 0 0 0\np 1 2 3\n"),
+                                      1)),
+            (std::vector<float>{1, 2, 3}));
+}
+
+TEST_F(PointIo, MalformedA3dStream)
+{
+  const std::string polygon = expectSamplesFailure(
+      write("polygon.pts", "p 1 2 3\nP 0 0 0\nv 0 0 0\nv 1 0 0\nv 0 1 0\nE 0 0 0\n"));
+  EXPECT_NE(polygon.find("line 2"), std::string::npos) << polygon;
+  EXPECT_NE(polygon.find("polygon"), std::string::npos) << polygon;
+  const std::string short_state =
+      expectSamplesFailure(write("short.pts", "d 0 0\np 1 2 3\n"));
+  EXPECT_NE(short_state.find("line 1"), std::string::npos) << short_state;
+  const std::string word = expectSamplesFailure(write("word.pts", "n 0 x 1\np 1 2 3\n"));
+  EXPECT_NE(word.find("'x'"), std::string::npos) << word;
+  const std::string none = expectSamplesFailure(write("none.pts", "d 1 1 1\nq 0 0 0\n"));
+  EXPECT_NE(none.find("no points"), std::string::npos) << none;
+}
+
 // ---------------------------------------------------------------------------------
 // OBJ
 

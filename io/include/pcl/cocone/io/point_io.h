@@ -28,8 +28,11 @@ namespace cocone {
  * - `.off`: OFF, COFF, NOFF headers; the vertices;
  * - `.xyz`, `.pts`, `.txt`: one point per line, whitespace-separated columns whose first
  *   three are x y z (further columns are ignored); blank lines and lines starting with
- *   `#` are skipped; Hoppe's `p x y z` lines (and his `n nx ny nz` normal lines, which
- *   are ignored) are accepted.
+ *   `#` are skipped. Hoppe's a3d streams (his `.pts` files) are read as written: the
+ *   points are the `p x y z` records; the normal, colour and command records (`n`,
+ *   `d`, `s`, `g`, `o`, `O`, `f`, each with three numbers) are checked and set aside,
+ *   `q` ends the stream, and polygon or polyline records (`P`, `L`, `v`, `E`) are an
+ *   error.
  *
  * Meshes are read as their vertices: the vertices are the samples. The cloud is
  * unorganized (height 1) unless the file itself is organized (PCD), and keeps every
