@@ -173,7 +173,7 @@ fail(const std::string& message)
     stage_open = false;
   }
   std::fflush(stdout);
-  print_error("%s: %s\n", program_name.c_str(), oneLine(message).c_str());
+  print_error("%s: %s\n", program_name.c_str(), utf8Escaped(oneLine(message)).c_str());
   std::exit(EXIT_FAILURE);
 }
 

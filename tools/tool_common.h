@@ -38,7 +38,8 @@ namespace tools {
 /** \brief Prints "<program>: <message>" as one line on stderr and exits with code 1.
  * An open stage line on stdout is closed first ("[failed]"), so that the two streams
  * do not share a line on a terminal. Control characters in \a message are replaced so
- * that the promise of one line holds for any file name or argument. The message shows
+ * that the promise of one line holds for any file name or argument, and bytes that are
+ * not UTF-8 are escaped (pcl::cocone::utf8Escaped). The message shows
  * even when called within a QuietPcl scope. */
 [[noreturn]] void
 fail(const std::string& message);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 
 namespace pcl {
 namespace cocone {
@@ -146,12 +147,23 @@ appendField(pcl::PCLPointCloud2& cloud,
 }
 
 void
+checkDataSize(std::uint64_t point_step, std::uint64_t points)
+{
+  constexpr std::uint64_t max = std::numeric_limits<std::uint32_t>::max();
+  if (point_step > 0 && points > max / point_step)
+    throw std::length_error("more than 4 GiB of point data (" +
+                            std::to_string(points) + " points of " +
+                            std::to_string(point_step) + " bytes)");
+}
+
+void
 finishLayout(pcl::PCLPointCloud2& cloud, std::size_t points)
 {
   std::uint32_t alignment = 1;
   for (const Field& field : cloud.fields)
     alignment = std::max<std::uint32_t>(alignment, pcl::getFieldSize(field.datatype));
   cloud.point_step = (cloud.point_step + alignment - 1) / alignment * alignment;
+  checkDataSize(cloud.point_step, points);
   cloud.width = static_cast<std::uint32_t>(points);
   cloud.height = 1;
   cloud.row_step = cloud.point_step * cloud.width;

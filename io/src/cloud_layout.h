@@ -43,6 +43,12 @@ appendField(pcl::PCLPointCloud2& cloud,
             std::uint8_t datatype,
             std::uint32_t count = 1);
 
+/** Fails (std::length_error) when \a points points of \a point_step bytes exceed the
+ * 4 GiB that PCLPointCloud2's 32-bit row_step can describe: a documented limit of the
+ * readers, checked before anything is allocated. */
+void
+checkDataSize(std::uint64_t point_step, std::uint64_t points);
+
 /** Pads the point to the alignment of its widest field and sizes the cloud for
  * \a points points (unorganized, zeroed). */
 void

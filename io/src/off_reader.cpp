@@ -63,6 +63,14 @@ readOff(const Source& source,
   if (!tokens.next(token))
     source.failAt(lines.number(), "expected the vertex and face counts");
   const long long face_count = parseCount(source, lines.number(), token);
+  // The edge count is often left out, and never used; but if it is there it must be a
+  // count, and nothing may follow it.
+  if (tokens.next(token)) {
+    parseCount(source, lines.number(), token);
+    if (tokens.next(token))
+      source.failAt(lines.number(), excerpt(token) + " after the vertex, face and "
+                                                     "edge counts");
+  }
   if (vertex_count > std::numeric_limits<pcl::index_t>::max())
     source.failAt(lines.number(), "too many vertices");
 

@@ -21,8 +21,10 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <istream>
 #include <iterator>
 #include <limits>
+#include <streambuf>
 
 namespace pcl {
 namespace cocone {
@@ -126,6 +128,8 @@ checkPcd(const Source& source, std::string_view text)
       const long long count = parseCount(source, number, token);
       if (count > std::numeric_limits<std::int32_t>::max())
         source.failAt(number, keyword + " too large");
+      if (tokens.next(token))
+        source.failAt(number, keyword + " has more than one value");
       (keyword == "WIDTH" ? width : keyword == "HEIGHT" ? height : points) = count;
     }
     else { // DATA
@@ -133,6 +137,8 @@ checkPcd(const Source& source, std::string_view text)
           (token != "ascii" && token != "binary" && token != "binary_compressed"))
         source.failAt(number, "unknown PCD data kind");
       data = std::string(token);
+      if (tokens.next(token))
+        source.failAt(number, "DATA has more than one value");
     }
   }
 
@@ -162,14 +168,26 @@ checkPcd(const Source& source, std::string_view text)
     source.fail("the PCD header lacks SIZE or TYPE");
   if (counts.empty())
     counts.assign(names.size(), 1);
-  std::size_t point_step = 0;
-  std::size_t values_per_point = 0;
+  // PCL reads these numbers again as int and computes its offsets, point step and data
+  // size from them in 32 bits: each is bounded here so that none of that overflows,
+  // and the sums are checked as they grow, before anything is allocated.
+  constexpr long long max_int = std::numeric_limits<std::int32_t>::max();
+  long long point_step = 0;
+  long long values_per_point = 0;
   for (std::size_t i = 0; i < names.size(); ++i) {
-    if (pcl::getFieldType(static_cast<int>(sizes[i]), types[i]) < 0 || counts[i] < 1)
+    const long long size = sizes[i];
+    if ((size != 1 && size != 2 && size != 4 && size != 8) ||
+        pcl::getFieldType(static_cast<int>(size), types[i]) < 0 || counts[i] < 1 ||
+        counts[i] > max_int)
       source.fail("PCD field " + excerpt(names[i]) +
                   " has an invalid SIZE, TYPE or COUNT");
-    point_step += static_cast<std::size_t>(sizes[i] * counts[i]);
-    values_per_point += static_cast<std::size_t>(counts[i]);
+    // size <= 8 and count < 2^31: neither the product nor the sums (bounded below
+    // max_int before each step) can overflow.
+    point_step += size * counts[i];
+    values_per_point += counts[i];
+    if (point_step > max_int)
+      source.fail("PCD points too large (more than " + std::to_string(max_int) +
+                  " bytes each)");
   }
   for (const char* name : {"x", "y", "z"}) {
     const auto it = std::find(names.begin(), names.end(), name);
@@ -184,12 +202,17 @@ checkPcd(const Source& source, std::string_view text)
     source.fail("PCD WIDTH x HEIGHT differs from POINTS");
   if (points == 0)
     source.fail("no points (POINTS is 0)");
+  // Both factors are below 2^31.
+  const auto data_size =
+      static_cast<std::uint64_t>(points) * static_cast<std::uint64_t>(point_step);
+  if (data_size > std::numeric_limits<std::uint32_t>::max())
+    source.fail("PCD data of " + std::to_string(data_size) +
+                " bytes: more than the 4 GiB PCL's reader can address");
 
   const std::size_t body = static_cast<std::size_t>(lines.position() - text.data());
   const std::size_t available = text.size() - body;
-  const auto expected = static_cast<std::size_t>(points);
   if (data == "binary") {
-    if (available / point_step < expected)
+    if (available < data_size)
       source.fail("truncated: the binary data holds fewer than " +
                   std::to_string(points) + " points");
   }
@@ -200,10 +223,15 @@ checkPcd(const Source& source, std::string_view text)
     std::memcpy(sizes_header, text.data() + body, sizeof(sizes_header));
     if (sizes_header[0] > available - sizeof(sizes_header))
       source.fail("truncated: the compressed data is shorter than its header says");
-    if (expected > std::numeric_limits<std::uint32_t>::max() / point_step ||
-        sizes_header[1] != expected * point_step)
+    if (sizes_header[1] != data_size)
       source.fail("the compressed data does not decompress to " +
                   std::to_string(points) + " points");
+    // LZF's longest back reference is 3 bytes for 264 (the format of liblzf's lzf_d.c), so no
+    // compressed block expands more than 88 times: a header claiming more is a lie
+    // told to make the reader allocate.
+    if (sizes_header[1] / 88 > sizes_header[0])
+      source.fail("the compressed data is too short for " + std::to_string(points) +
+                  " points");
     std::vector<char> scratch(sizes_header[1]);
     if (pcl::lzfDecompress(text.data() + body + sizeof(sizes_header), sizes_header[0],
                            scratch.data(), sizes_header[1]) != sizes_header[1])
@@ -224,7 +252,7 @@ checkPcd(const Source& source, std::string_view text)
           source.failAt(lines.number(), excerpt(token) + " is not a number");
         ++values;
       }
-      if (values != values_per_point)
+      if (static_cast<long long>(values) != values_per_point)
         source.failAt(lines.number(), "expected " + std::to_string(values_per_point) +
                                           " values, found " + std::to_string(values));
       ++read;
@@ -236,17 +264,76 @@ checkPcd(const Source& source, std::string_view text)
 }
 
 
+/** A read-only stream over the bytes in memory, so that PCL parses the very bytes that
+ * were checked instead of opening the file a second time (it may have changed). PCL's
+ * header reader asks where the data start with tellg, hence the seeks. */
+class MemoryBuffer : public std::streambuf
+{
+public:
+  explicit MemoryBuffer(std::string_view text)
+  {
+    // The get area is only read from; streambuf wants non-const pointers all the same.
+    char* begin = const_cast<char*>(text.data());
+    setg(begin, begin, begin + text.size());
+  }
+
+protected:
+  pos_type
+  seekoff(off_type offset, std::ios_base::seekdir from, std::ios_base::openmode which)
+      override
+  {
+    const off_type size = egptr() - eback();
+    const off_type base = from == std::ios_base::beg   ? 0
+                          : from == std::ios_base::cur ? gptr() - eback()
+                                                       : size;
+    if (!(which & std::ios_base::in) || offset < -base || offset > size - base)
+      return pos_type(off_type(-1));
+    setg(eback(), eback() + base + offset, egptr());
+    return pos_type(base + offset);
+  }
+
+  pos_type
+  seekpos(pos_type position, std::ios_base::openmode which) override
+  {
+    return seekoff(off_type(position), std::ios_base::beg, which);
+  }
+};
+
 } // namespace
 
 void
-readPcd(const Source& source,
-        const std::string& path,
-        std::string_view text,
-        pcl::PCLPointCloud2& cloud)
+readPcd(const Source& source, std::string_view text, pcl::PCLPointCloud2& cloud)
 {
   checkPcd(source, text);
-  if (pcl::io::loadPCDFile(path, cloud) < 0)
-    source.fail("PCL's PCD reader rejected the file");
+  MemoryBuffer buffer(text);
+  std::istream stream(&buffer);
+  pcl::PCDReader reader;
+  Eigen::Vector4f origin;
+  Eigen::Quaternionf orientation;
+  int version = 0;
+  int data_type = 0;
+  unsigned int data_index = 0;
+  if (reader.readHeader(stream, cloud, origin, orientation, version, data_type,
+                        data_index) < 0)
+    source.fail("PCL's PCD reader rejected the header");
+  int result = 0;
+  if (data_type == 0) {
+    stream.clear();
+    stream.seekg(data_index);
+    result = reader.readBodyASCII(stream, cloud, version);
+  }
+  else {
+    result =
+        reader.readBodyBinary(reinterpret_cast<const unsigned char*>(text.data()),
+                              cloud, version, data_type == 2, data_index);
+  }
+  if (result < 0)
+    source.fail("PCL's PCD reader rejected the data");
+  // The check and PCL read the header separately; were they ever to disagree, the
+  // cloud would not be what was checked.
+  if (cloud.data.size() != static_cast<std::size_t>(cloud.width) * cloud.height *
+                               cloud.point_step)
+    source.fail("PCL's PCD reader gave a cloud of inconsistent size");
   makeXyzFloat(cloud);
   cloud.is_dense = allFinite(cloud);
 }

@@ -34,6 +34,8 @@ namespace io_internal {
 
 namespace {
 
+constexpr std::size_t max_properties = 65535;
+
 struct PlyProperty
 {
   std::string name;
@@ -128,6 +130,9 @@ parsePlyHeader(const Source& source, std::string_view text)
       const long long count = parseCount(source, number, token);
       if (count > std::numeric_limits<pcl::index_t>::max())
         source.failAt(number, "element " + excerpt(element.name) + " too large");
+      if (tokens.next(token))
+        source.failAt(number, "element " + excerpt(element.name) +
+                                  ": more than a name and a count");
       element.count = static_cast<std::size_t>(count);
       header.elements.push_back(std::move(element));
     }
@@ -151,6 +156,11 @@ parsePlyHeader(const Source& source, std::string_view text)
         source.failAt(number, "property without a name");
       property.name = std::string(token);
       auto& properties = header.elements.back().properties;
+      // A documented limit, far above any real file's, so that no sum of property
+      // sizes can overflow.
+      if (properties.size() == max_properties)
+        source.failAt(number, "more than " + std::to_string(max_properties) +
+                                  " properties in one element");
       for (const PlyProperty& other : properties)
         if (other.name == property.name)
           source.failAt(number, "duplicate property " + excerpt(property.name));
@@ -262,6 +272,25 @@ public:
       }
       checkEnd(tokens, element);
     }
+  }
+
+  /** Fails if the body holds more lines than the \a declared ones still to come: an
+   * extra line is a point (or face) that the header does not count, and would be
+   * dropped without a word. \a last is the element read last, for the message. */
+  void
+  checkNoMoreLines(std::size_t declared, const PlyElement& last)
+  {
+    std::string_view line;
+    for (std::size_t i = 0; i < declared; ++i)
+      if (!lines_.nextContent(line, false))
+        return; // fewer: what is missing belongs to an element not read here
+    if (lines_.nextContent(line, false))
+      source_.failAt(lines_.number(),
+                     declared == 0 ? "more " + excerpt(last.name) +
+                                         " lines than the " +
+                                         std::to_string(last.count) +
+                                         " the header declares"
+                                   : "more lines than the header declares");
   }
 
 private:
@@ -494,6 +523,16 @@ walkPly(const Source& source,
   if (header.format == PlyFormat::ascii) {
     PlyAsciiBody body(source, text, header);
     readPlyElement(body, header, wanted, read);
+    // Each count is below 2^31, so the sum of the counts after the element read cannot
+    // overflow.
+    std::size_t declared = 0;
+    bool after = false;
+    for (const PlyElement& element : header.elements) {
+      if (after)
+        declared += element.count;
+      after = after || &element == wanted;
+    }
+    body.checkNoMoreLines(declared, *wanted);
   }
   else {
     PlyBinaryBody body(source, text, header);
@@ -551,6 +590,8 @@ readPlyVertices(const Source& source, std::string_view text, pcl::PCLPointCloud2
     // reader, which can say on which line.
     room = std::min(room, (body_size + 1) / (2 * vertex->properties.size()));
   }
+  finishLayout(cloud, 0); // pads the point, so that the size below is the final one
+  checkDataSize(cloud.point_step, vertex->count);
   finishLayout(cloud, room);
   walkPly(source, text, header, vertex, [&](auto& body) {
     body.readVertices(*vertex, targets, cloud);

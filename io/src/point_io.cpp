@@ -69,7 +69,7 @@ guarded(const std::string& path, std::string* error, Body body)
     reason = path + ": unexpected error";
   }
   if (error)
-    *error = oneLine(std::move(reason));
+    *error = utf8Escaped(oneLine(std::move(reason)));
   return false;
 }
 
@@ -92,7 +92,7 @@ loadPointSamples(const std::string& path, pcl::PCLPointCloud2& cloud,
     std::vector<float> xyz;
     switch (format) {
     case Format::pcd:
-      readPcd(source, path, text, cloud);
+      readPcd(source, text, cloud);
       break;
     case Format::ply:
       readPlyVertices(source, text, cloud);

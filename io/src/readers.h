@@ -48,13 +48,9 @@ readPlyFaces(const Source& source,
              std::string_view text,
              std::vector<pcl::Vertices>& faces);
 
-/** PCD: \a text (the contents of \a path) is checked here, then PCL's reader reads
- * \a path. */
+/** PCD: \a text is checked here, then PCL's reader parses it. */
 void
-readPcd(const Source& source,
-        const std::string& path,
-        std::string_view text,
-        pcl::PCLPointCloud2& cloud);
+readPcd(const Source& source, std::string_view text, pcl::PCLPointCloud2& cloud);
 
 } // namespace io_internal
 } // namespace cocone

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "text_scan.h"
 
+#include <pcl/cocone/io/point_io.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
@@ -133,5 +135,54 @@ readFile(const Source& source, const std::string& path, std::string& contents)
 }
 
 } // namespace io_internal
+
+std::string
+utf8Escaped(std::string_view text)
+{
+  std::string out;
+  out.reserve(text.size());
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+    const unsigned char lead = byte(i);
+    // The length of the sequence \a lead starts and the range of its second byte
+    // (RFC 3629, section 4), which excludes overlong forms, surrogates and code points
+    // beyond U+10FFFF.
+    std::size_t length = 0;
+    unsigned char low = 0x80;
+    unsigned char high = 0xbf;
+    if (lead < 0x80)
+      length = 1;
+    else if (lead >= 0xc2 && lead <= 0xdf)
+      length = 2;
+    else if (lead >= 0xe0 && lead <= 0xef) {
+      length = 3;
+      low = lead == 0xe0 ? 0xa0 : 0x80;
+      high = lead == 0xed ? 0x9f : 0xbf;
+    }
+    else if (lead >= 0xf0 && lead <= 0xf4) {
+      length = 4;
+      low = lead == 0xf0 ? 0x90 : 0x80;
+      high = lead == 0xf4 ? 0x8f : 0xbf;
+    }
+    bool valid = length > 0 && i + length <= text.size();
+    for (std::size_t k = 1; valid && k < length; ++k) {
+      const unsigned char b = byte(i + k);
+      valid = k == 1 ? (b >= low && b <= high) : (b >= 0x80 && b <= 0xbf);
+    }
+    if (valid) {
+      out.append(text.substr(i, length));
+      i += length;
+      continue;
+    }
+    constexpr char digits[] = "0123456789abcdef";
+    out += "\\x";
+    out += digits[lead >> 4];
+    out += digits[lead & 0xf];
+    ++i;
+  }
+  return out;
+}
+
 } // namespace cocone
 } // namespace pcl

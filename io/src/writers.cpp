@@ -4,6 +4,8 @@
 // triangles is a few tens of megabytes, and one write makes a failure simple to report.
 #include <pcl/cocone/io/writers.h>
 
+#include <pcl/cocone/io/point_io.h>
+
 #include <pcl/io/pcd_io.h>
 
 #include <algorithm>
@@ -136,7 +138,7 @@ bool
 failed(std::string* error, const std::string& message)
 {
   if (error)
-    *error = message;
+    *error = utf8Escaped(message);
   return false;
 }
 

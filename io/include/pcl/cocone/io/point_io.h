@@ -12,6 +12,7 @@
 #include <pcl/cocone/io/export.h>
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace pcl {
@@ -62,6 +63,15 @@ PCL_COCONE_IO_EXPORT bool
 loadMeshFaces(const std::string& path,
               std::vector<pcl::Vertices>& faces,
               std::string* error = nullptr);
+
+/** \brief \a text with every byte that is not part of a valid UTF-8 sequence written
+ * as `\xHH` (hexadecimal), so that a message quoting a file's bytes or a path is valid
+ * UTF-8. The readers' and writers' reasons are already escaped so.
+ * \param[in] text any bytes
+ * \return the same text where it is valid UTF-8 (overlong forms, surrogates and code
+ *         points beyond U+10FFFF are not), escapes elsewhere */
+PCL_COCONE_IO_EXPORT std::string
+utf8Escaped(std::string_view text);
 
 } // namespace cocone
 } // namespace pcl
