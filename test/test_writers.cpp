@@ -6,10 +6,14 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
+#include <csignal>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -174,5 +178,81 @@ TEST_F(Writers, FailuresSayWhyInOneLine)
   // The reason is optional.
   EXPECT_FALSE(pcl::cocone::writeFile(missing, "abc", 3));
 }
+
+/** The names in \a folder, sorted: a write must leave no temporary file behind. */
+std::vector<std::string>
+namesIn(const fs::path& folder)
+{
+  std::vector<std::string> names;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder))
+    names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+TEST_F(Writers, ReplacingAFileKeepsItsPermissionsAndLeavesNothingElse)
+{
+  const std::string file = path("data.bin");
+  ASSERT_TRUE(pcl::cocone::writeFile(file, "old contents", 12));
+  fs::permissions(file, fs::perms::owner_read | fs::perms::owner_write |
+                            fs::perms::group_read);
+  std::string error = "stale";
+  ASSERT_TRUE(pcl::cocone::writeFile(file, "new", 3, &error)) << error;
+  EXPECT_TRUE(error.empty());
+  EXPECT_EQ(contentsOf(file), "new");
+  EXPECT_EQ(fs::status(file).permissions(),
+            fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  EXPECT_EQ(namesIn(dir_), std::vector<std::string>{"data.bin"});
+}
+
+TEST_F(Writers, ALinkStaysALinkAndItsTargetIsReplaced)
+{
+  fs::create_directories(dir_ / "real");
+  const std::string target = path("real/mesh.ply");
+  ASSERT_TRUE(pcl::cocone::writeFile(target, "old", 3));
+  fs::create_symlink("real/mesh.ply", dir_ / "link.ply");
+  ASSERT_TRUE(pcl::cocone::saveMesh(path("link.ply"), kVertices, kTriangles, "x"));
+  EXPECT_TRUE(fs::is_symlink(dir_ / "link.ply"));
+  EXPECT_EQ(contentsOf(target).rfind("ply\n", 0), 0u);
+  EXPECT_EQ(namesIn(dir_ / "real"), std::vector<std::string>{"mesh.ply"});
+}
+
+TEST_F(Writers, AFailedWriteLeavesTheFileAsItWas)
+{
+  const std::string file = path("mesh.ply");
+  ASSERT_TRUE(pcl::cocone::writeFile(file, "the input", 9));
+  // In a child: files may grow to 1000 bytes only, and SIGXFSZ is ignored, as the
+  // tools do, so that the write fails with EFBIG instead of ending the process.
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    std::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{1000, 1000};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    const std::string big(5000, 'x');
+    std::string error;
+    const bool written = pcl::cocone::writeFile(file, big.data(), big.size(), &error);
+    ::_exit(!written && error == "cannot write " + file + ": File too large" ? 0 : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  EXPECT_EQ(contentsOf(file), "the input");
+  EXPECT_EQ(namesIn(dir_), std::vector<std::string>{"mesh.ply"});
+}
+
+TEST_F(Writers, AFileWeMayNotWriteIsNotReplaced)
+{
+  const std::string file = path("locked.pcd");
+  ASSERT_TRUE(pcl::cocone::writeFile(file, "locked", 6));
+  fs::permissions(file, fs::perms::owner_read);
+  if (::access(file.c_str(), W_OK) == 0)
+    GTEST_SKIP() << "running with rights that write any file (root?)";
+  std::string error;
+  EXPECT_FALSE(pcl::cocone::writeFile(file, "new", 3, &error));
+  EXPECT_NE(error.find("Permission denied"), std::string::npos) << error;
+  EXPECT_EQ(contentsOf(file), "locked");
+}
+
 
 } // namespace

@@ -12,6 +12,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -253,6 +254,11 @@ CommandLine::CommandLine(ToolDescription tool, std::vector<Option> options)
 void
 CommandLine::parse(int argc, char** argv)
 {
+  // Past a file size limit (ulimit -f) a write raises SIGXFSZ, which would end the tool
+  // with a core dump and leave the temporary file of the write behind; ignored, the
+  // write fails with EFBIG and the tool says so in its one line, having removed it.
+  std::signal(SIGXFSZ, SIG_IGN);
+
   // Help wins over everything else on the line, as in PCL's tools.
   for (int i = 1; i < argc; ++i)
     if (std::strcmp(argv[i], "-h") == 0 || std::strcmp(argv[i], "--help") == 0) {

@@ -132,7 +132,8 @@ public:
    * value, a value that is not a number (an integer where one is needed) or is out of
    * range, and an output path with an unsupported extension or in a missing folder.
    * With -v, raises PCL's console verbosity to L_DEBUG for the whole run (QuietPcl
-   * then silences nothing). */
+   * then silences nothing). Ignores SIGXFSZ, so that a write past a file size limit
+   * fails with its reason instead of ending the tool (see pcl::cocone::writeFile). */
   void
   parse(int argc, char** argv);
 

@@ -2,13 +2,20 @@
 //
 // The writers build the whole file in memory and write it at once: a mesh of a million
 // triangles is a few tens of megabytes, and one write makes a failure simple to report.
+// Every file is written beside its target and renamed into place (writeFile), so that
+// a failed write never leaves a partial file, nor destroys the one that was there.
 #include <pcl/cocone/io/writers.h>
 
 #include <pcl/cocone/io/point_io.h>
 
 #include <pcl/io/pcd_io.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
@@ -20,6 +27,7 @@ namespace cocone {
 
 namespace {
 
+namespace fs = std::filesystem;
 using Triangle = std::array<std::uint32_t, 3>;
 
 /** Appends the 4 bytes of \a bits least significant first, whatever the host order. */
@@ -151,24 +159,93 @@ lowerCase(std::string text)
   return text;
 }
 
+/** Writes all \a size bytes to \a fd, going on after partial writes and interrupts;
+ * false with errno set on an error (EFBIG past a file size limit when SIGXFSZ is
+ * ignored, ENOSPC, EDQUOT, EIO). */
+bool
+writeAll(int fd, const void* data, std::size_t size)
+{
+  const char* p = static_cast<const char*>(data);
+  while (size > 0) {
+    const ssize_t written = ::write(fd, p, size);
+    if (written < 0) {
+      if (errno == EINTR)
+        continue;
+      return false;
+    }
+    p += written;
+    size -= static_cast<std::size_t>(written);
+  }
+  return true;
+}
+
 } // namespace
 
 bool
 writeFile(const std::string& path, const void* data, std::size_t size, std::string* error)
 {
-  errno = 0;
-  std::FILE* file = std::fopen(path.c_str(), "wb");
-  if (!file)
-    return failed(error, "cannot write " + path + ": " + std::strerror(errno));
-  const bool written = std::fwrite(data, 1, size, file) == size;
-  const int write_error = errno;
-  // fclose flushes: a full disk may show up only here.
-  const bool closed = std::fclose(file) == 0;
-  if (!written || !closed) {
-    const int code = written ? errno : write_error;
-    std::remove(path.c_str());
+  const auto failWith = [&](int code) {
     return failed(error, "cannot write " + path + ": " +
                              (code ? std::strerror(code) : "write error"));
+  };
+  // A symbolic link stays a link: the file it names is the one replaced.
+  fs::path target = path;
+  std::error_code ec;
+  if (fs::is_symlink(fs::symlink_status(target, ec))) {
+    const fs::path link = fs::read_symlink(target, ec);
+    if (!ec)
+      target = link.is_absolute() ? link : target.parent_path() / link;
+  }
+  struct stat existing;
+  const bool exists = ::stat(target.c_str(), &existing) == 0;
+  // The checks opening the file for writing would have made: a file we may not write
+  // is not replaced behind its owner's back.
+  if (exists && ::access(target.c_str(), W_OK) != 0)
+    return failWith(errno);
+  // A device or a FIFO cannot be replaced by a rename; it is written as it is.
+  if (exists && !S_ISREG(existing.st_mode)) {
+    const int fd = ::open(target.c_str(), O_WRONLY | O_CLOEXEC);
+    if (fd < 0)
+      return failWith(errno);
+    const int code = writeAll(fd, data, size) ? 0 : errno;
+    if (::close(fd) != 0 || code != 0)
+      return failWith(code ? code : errno);
+    if (error)
+      error->clear();
+    return true;
+  }
+
+  // The bytes go to a new file beside the target, which a rename then puts in its
+  // place: until then the target is untouched, whatever fails (a full disk, a quota,
+  // a file size limit), and afterwards it is complete. So OUTPUT may be INPUT.
+  static std::atomic<unsigned> counter{0};
+  const fs::path folder = target.parent_path();
+  const std::string stem = "." + target.filename().string() + ".tmp-" +
+                           std::to_string(::getpid()) + "-";
+  std::string temporary;
+  int fd = -1;
+  while (fd < 0) {
+    temporary = (folder / (stem + std::to_string(counter++))).string();
+    // 0666 as fopen uses, so that the user's umask applies as it always did.
+    fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0 && errno != EEXIST)
+      return failWith(errno);
+  }
+  int code = writeAll(fd, data, size) ? 0 : errno;
+  // A file replaced keeps its permissions.
+  if (code == 0 && exists && ::fchmod(fd, existing.st_mode & 07777) != 0)
+    code = errno;
+  // The data must be on the disk before the name points at them; a full disk may
+  // also show up only here.
+  if (code == 0 && ::fsync(fd) != 0)
+    code = errno;
+  if (::close(fd) != 0 && code == 0)
+    code = errno ? errno : EIO;
+  if (code == 0 && ::rename(temporary.c_str(), target.c_str()) != 0)
+    code = errno;
+  if (code != 0) {
+    ::unlink(temporary.c_str());
+    return failWith(code);
   }
   if (error)
     error->clear();
@@ -202,7 +279,7 @@ saveMesh(const std::string& path,
          std::string* error)
 {
   const std::string extension =
-      lowerCase(std::filesystem::path(path).extension().string());
+      lowerCase(fs::path(path).extension().string());
   std::string contents;
   if (extension == ".ply")
     contents = meshAsPly(vertices, triangles, creator);

@@ -2,8 +2,8 @@
 /**
  * \file
  * Writing what the tools compute: clouds as binary PCD, triangle meshes as PLY, VTK or
- * OBJ, and any bytes (a picture, say) to a file, each reporting a failed write with the
- * system's reason instead of leaving a short file behind.
+ * OBJ, and any bytes (a picture, say) to a file. Every write is atomic (writeFile): a
+ * failure gives the system's reason and leaves the files as they were.
  */
 #pragma once
 
@@ -19,14 +19,22 @@
 namespace pcl {
 namespace cocone {
 
-/** \brief Writes \a size bytes from \a data to \a path.
+/** \brief Writes \a size bytes from \a data to \a path, atomically: to a new file in
+ * the same folder, synced, then renamed over \a path. Until the rename \a path is
+ * untouched, so a failed write (a full disk, a quota, a file size limit) leaves it as
+ * it was and \a path may be the file the data were read from. A file replaced keeps
+ * its permission bits; a new one gets 0666 less the umask, as with fopen. A symbolic
+ * link is followed (the file it names is replaced); a device or FIFO is written
+ * directly. A file size limit (RLIMIT_FSIZE) ends the process with SIGXFSZ unless the
+ * program ignores that signal, as the tools do; then the write fails with "File too
+ * large" and leaves nothing behind.
  * \param[in] path the file to write
  * \param[in] data the bytes
  * \param[in] size their number
  * \param[out] error if not null, receives "cannot write", the path and the system's
  *             reason on failure, and is cleared on success
- * \return true if every byte was written; false otherwise, and then no partial file is
- *         left at \a path */
+ * \return true if every byte was written; false otherwise, and then \a path is as it
+ *         was and no temporary file is left */
 PCL_COCONE_IO_EXPORT bool
 writeFile(const std::string& path,
           const void* data,
