@@ -38,6 +38,15 @@ namespace cocone {
  * Meshes are read as their vertices: the vertices are the samples. The cloud is
  * unorganized (height 1) unless the file itself is organized (PCD), and keeps every
  * point, NaN ones included, in file order.
+ *
+ * Every count, size and offset a file declares is checked, with arithmetic that cannot
+ * overflow, against the bytes the file really has before anything is allocated, so
+ * that memory stays bounded by the file's size: binary data must be there in full, a
+ * compressed PCD block may not claim more than the 88-fold growth LZF allows, and
+ * ascii data are counted line by line. Beyond that, two documented limits: a cloud
+ * holds at most 4 GiB of point data (PCLPointCloud2's row_step has 32 bits), and a
+ * PLY element at most 65535 properties. Malformed counts, and an ascii PLY with more
+ * lines than its header declares, are errors.
  * \param[in] path the file to read
  * \param[out] cloud the samples, with float fields x, y, z at least, in the file's
  *             units; point i is the i-th point (vertex) of the file
