@@ -112,38 +112,45 @@ main(int argc, char** argv)
   out_dir = argv[1];
 
   put("columns", "plain.xyz", "1 2 3\n4.5 -5e-1 +6E2\n");
-  put("columns", "normals.xyz", "# x y z nx ny nz\n0 0 0 0 0 1\n1 0 0 0 1 0\r\n"
-                                "nan inf -inf 1 0 0\n0 1 0 0 0 1");
-  put("columns", "a3d.pts", "# Created by WA3dStream\nd 0 0 0\ns 0 0 0\ng 1 0 0\n"
-                            "n 0 0 1\np 0.5 0.25 0.125\no 1 1 0\nf 0 0 0\np 1 2 3\n"
-                            "q 0 0 0\nrest\n");
+  put("columns", "normals.xyz",
+      "# x y z nx ny nz\n0 0 0 0 0 1\n1 0 0 0 1 0\r\n"
+      "nan inf -inf 1 0 0\n0 1 0 0 0 1");
+  put("columns", "a3d.pts",
+      "# Created by WA3dStream\nd 0 0 0\ns 0 0 0\ng 1 0 0\n"
+      "n 0 0 1\np 0.5 0.25 0.125\no 1 1 0\nf 0 0 0\np 1 2 3\n"
+      "q 0 0 0\nrest\n");
 
-  put("obj", "mesh.obj", "# seed\nmtllib m.mtl\no thing\nv 0 0 0\nv 1 0 0 1.0\n"
-                         "vt 0.5 0.5\nvn 0 0 1\nv 1 1 0 0.1 0.2 0.3\nv 0 1 0\n"
-                         "g part\nusemtl red\ns off\nf 1 2 3\nf 1/1 3/1 4/1\n"
-                         "f 1//1 2//1 3//1 4//1\nf -4/1/1 -3/1/1 -1/1/1\nl 1 2\n"
-                         "v 5 5 5\nf -1 1 2\n");
+  put("obj", "mesh.obj",
+      "# seed\nmtllib m.mtl\no thing\nv 0 0 0\nv 1 0 0 1.0\n"
+      "vt 0.5 0.5\nvn 0 0 1\nv 1 1 0 0.1 0.2 0.3\nv 0 1 0\n"
+      "g part\nusemtl red\ns off\nf 1 2 3\nf 1/1 3/1 4/1\n"
+      "f 1//1 2//1 3//1 4//1\nf -4/1/1 -3/1/1 -1/1/1\nl 1 2\n"
+      "v 5 5 5\nf -1 1 2\n");
 
-  put("off", "mesh.off", "OFF\n# comment\n\n4 2 0\n0 0 0\n1 0 0 # trailing\n1 1 0\n"
-                         "0 1 0\n3 0 1 2\n4 0 1 2 3 255 0 0\n");
-  put("off", "coff.off", "COFF\n3 1 3\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n"
-                         "0 1 0 0 0 255 255\n3 0 1 2\n");
+  put("off", "mesh.off",
+      "OFF\n# comment\n\n4 2 0\n0 0 0\n1 0 0 # trailing\n1 1 0\n"
+      "0 1 0\n3 0 1 2\n4 0 1 2 3 255 0 0\n");
+  put("off", "coff.off",
+      "COFF\n3 1 3\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n"
+      "0 1 0 0 0 255 255\n3 0 1 2\n");
   put("off", "noff.off", "NOFF 2 0 0\n1 2 3 0 0 1\n4 5 6 0 1 0\n");
   put("off", "bare.off", "2 0\n1 2 3\n4 5 6\n");
 
-  put("ply", "ascii.ply", "ply\r\nformat ascii 1.0\r\ncomment seed\r\nobj_info x\r\n"
-                          "element vertex 3\r\nproperty float x\r\nproperty float y\r\n"
-                          "property float z\r\nproperty uchar red\r\nproperty int label\r\n"
-                          "element face 1\r\nproperty list uchar int vertex_indices\r\n"
-                          "element range_grid 2\r\nproperty list uchar int vertex_indices\r\n"
-                          "end_header\r\n0.5 1.5 2.5 255 -7\r\n3 4 5 0 100000\r\n"
-                          "6 7 8 17 0\r\n3 0 1 2\r\n1 0\r\n0\r\n");
+  put("ply", "ascii.ply",
+      "ply\r\nformat ascii 1.0\r\ncomment seed\r\nobj_info x\r\n"
+      "element vertex 3\r\nproperty float x\r\nproperty float y\r\n"
+      "property float z\r\nproperty uchar red\r\nproperty int label\r\n"
+      "element face 1\r\nproperty list uchar int vertex_indices\r\n"
+      "element range_grid 2\r\nproperty list uchar int vertex_indices\r\n"
+      "end_header\r\n0.5 1.5 2.5 255 -7\r\n3 4 5 0 100000\r\n"
+      "6 7 8 17 0\r\n3 0 1 2\r\n1 0\r\n0\r\n");
   put("ply", "little.ply", binaryPly(false));
   put("ply", "big.ply", binaryPly(true));
-  const std::vector<std::array<float, 3>> vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
-  const std::vector<std::array<std::uint32_t, 3>> triangles = {{0, 1, 2}};
+  const std::vector<std::array<float, 3> > vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  const std::vector<std::array<std::uint32_t, 3> > triangles = {{0, 1, 2}};
   for (const char* name : {"written.ply", "written.obj"}) {
-    const fs::path path = out_dir / (fs::path(name).extension() == ".ply" ? "ply" : "obj");
+    const fs::path path =
+        out_dir / (fs::path(name).extension() == ".ply" ? "ply" : "obj");
     fs::create_directories(path);
     if (!pcl::cocone::saveMesh((path / name).string(), vertices, triangles, "seeds"))
       return 1;
@@ -157,9 +164,10 @@ main(int argc, char** argv)
       writer.writeBinaryCompressed((out_dir / "pcd" / "compressed.pcd").string(),
                                    cloud) != 0)
     return 1;
-  put("pcd", "double.pcd", "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z label\n"
-                           "SIZE 8 8 8 4\nTYPE F F F U\nCOUNT 1 1 1 1\nWIDTH 2\n"
-                           "HEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 2\nDATA ascii\n"
-                           "1.5 2.5 3.5 7\n4 5 6 8\n");
+  put("pcd", "double.pcd",
+      "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z label\n"
+      "SIZE 8 8 8 4\nTYPE F F F U\nCOUNT 1 1 1 1\nWIDTH 2\n"
+      "HEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 2\nDATA ascii\n"
+      "1.5 2.5 3.5 7\n4 5 6 8\n");
   return 0;
 }

@@ -30,8 +30,7 @@ namespace fs = std::filesystem;
 class Writers : public ::testing::Test
 {
 protected:
-  void
-  SetUp() override
+  void SetUp() override
   {
     static std::atomic<int> counter{0};
     dir_ = fs::path(::testing::TempDir()) /
@@ -41,19 +40,14 @@ protected:
     fs::create_directories(dir_);
   }
 
-  void
-  TearDown() override
+  void TearDown() override
   {
     std::error_code ec;
     fs::permissions(dir_, fs::perms::owner_all, fs::perm_options::add, ec);
     fs::remove_all(dir_, ec);
   }
 
-  std::string
-  path(const std::string& name) const
-  {
-    return (dir_ / name).string();
-  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
   fs::path dir_;
 };
@@ -67,8 +61,8 @@ contentsOf(const std::string& path)
   return text.str();
 }
 
-using Vertices = std::vector<std::array<float, 3>>;
-using Triangles = std::vector<std::array<std::uint32_t, 3>>;
+using Vertices = std::vector<std::array<float, 3> >;
+using Triangles = std::vector<std::array<std::uint32_t, 3> >;
 
 // Values whose shortest decimal form needs all nine digits, and one that is tiny.
 const Vertices kVertices = {{0.1f, -2.5f, 3.0f},
@@ -104,9 +98,9 @@ TEST_F(Writers, MeshesReadBackExactlyInEveryFormat)
     ASSERT_TRUE(pcl::cocone::loadMeshFaces(file, faces, &error)) << error;
     ASSERT_EQ(faces.size(), kTriangles.size());
     for (std::size_t t = 0; t < kTriangles.size(); ++t)
-      EXPECT_EQ(std::vector<pcl::index_t>(faces[t].vertices.begin(),
-                                          faces[t].vertices.end()),
-                (std::vector<pcl::index_t>(kTriangles[t].begin(), kTriangles[t].end())));
+      EXPECT_EQ(
+          std::vector<pcl::index_t>(faces[t].vertices.begin(), faces[t].vertices.end()),
+          (std::vector<pcl::index_t>(kTriangles[t].begin(), kTriangles[t].end())));
   }
 }
 
@@ -156,8 +150,8 @@ TEST_F(Writers, CloudKeepsItsFieldsAndOrganization)
 TEST_F(Writers, FailuresSayWhyInOneLine)
 {
   std::string error;
-  EXPECT_FALSE(pcl::cocone::saveMesh(path("mesh.stl"), kVertices, kTriangles, "x",
-                                     &error));
+  EXPECT_FALSE(
+      pcl::cocone::saveMesh(path("mesh.stl"), kVertices, kTriangles, "x", &error));
   EXPECT_NE(error.find("unsupported mesh format"), std::string::npos) << error;
   EXPECT_FALSE(fs::exists(path("mesh.stl")));
 
@@ -253,6 +247,5 @@ TEST_F(Writers, AFileWeMayNotWriteIsNotReplaced)
   EXPECT_NE(error.find("Permission denied"), std::string::npos) << error;
   EXPECT_EQ(contentsOf(file), "locked");
 }
-
 
 } // namespace

@@ -4,8 +4,8 @@
 // streams (his .pts files), whose points are the `p x y z` records.
 //
 // Our own parser, because no library reader reads these files as they are written
-// (measured with PCL 1.13 and VTK 9.1 on the five column files of the shared data and
-// on malformed ones):
+// (measured by io/survey's reader_survey with PCL 1.13 and VTK 9.1, on the five column
+// files of the shared data and on malformed ones):
 // - vtkSimplePointsReader reads all numbers as one stream of x y z triples: a 6-column
 //   file gives two points per line (3holes: 8000 points for 4000, kitten: 10420 for
 //   5210), and what it read before a bad token is a success ("4 five 6": no error);

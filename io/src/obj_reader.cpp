@@ -3,12 +3,13 @@
 // Wavefront OBJ: the `v` lines are the points, the `f` lines the faces.
 //
 // Our own parser, because both library readers hand out faces that name vertices the
-// file does not have, an out-of-bounds read for whoever uses the mesh (measured with
-// PCL 1.13 and VTK 9.1 on fandisk and on malformed files):
+// file does not have, an out-of-bounds read for whoever uses the mesh (measured by
+// io/survey's reader_survey with PCL 1.13 and VTK 9.1, on fandisk and on malformed
+// files):
 // - pcl::OBJReader returns `f 1 2 9` on 3 vertices (index 8), `f 0 1 2`, `f -5 1 2`
-//   (index -2) and `f 1 2 99999999999` (wrapped to 1215752190) as a success; it also
-//   adds normal_x/y/z fields whenever the file has `vn` lines, and prints to stderr
-//   when an `mtllib` file is missing;
+//   (index -2) and `f 1 2 99999999999` (wrapped to 1215752190) as a success, and
+//   crashes (SIGSEGV) on the line `v 1 2`; it also adds normal_x/y/z fields whenever
+//   the file has `vn` lines, and prints to stderr when an `mtllib` file is missing;
 // - vtkOBJReader accepts the same faces, and reads `v 1 2` and `v 1 x 3` as points.
 #include "readers.h"
 

@@ -6,7 +6,8 @@
 // CGAL::IO::read_OFF (CGAL is a dependency of the core already) reads the three OFF
 // files of the shared data, but reserves for the counts of the header before reading:
 // a 20-byte file declaring 2000000000 vertices or faces, or a face of 4000000000
-// corners, ends in std::bad_alloc (measured under an 8 GB address-space limit).
+// corners, ends in std::bad_alloc (measured by io/survey's reader_survey under an 8 GB
+// address-space limit).
 #include "readers.h"
 
 #include "cloud_layout.h"

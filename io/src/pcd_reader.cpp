@@ -5,11 +5,12 @@
 // PCL's reader is the one that knows PCL's format (its three encodings, LZF and the
 // structure-of-arrays layout of binary_compressed), and it reads the four PCD files of
 // the shared data as they are. But alone it is not safe on a file it did not write
-// (measured with PCL 1.13): it crashes (SIGSEGV) on an empty or non-PCD file; it
-// allocates what the header declares before looking at the data (POINTS 2000000000 in
-// a 120-byte file: std::bad_alloc); it reads "4 x 6" and a line with too few values as
-// points (a warning at most); and it prints to stderr on every problem. So every file
-// is checked here first, and PCL reads only what passed.
+// (measured by io/survey's reader_survey, PCL 1.13): it crashes (SIGSEGV) on an empty
+// or non-PCD file and on a COUNT whose product with SIZE overflows; it allocates what
+// the header declares before looking at the data (POINTS 2000000000 in a 120-byte
+// file: std::bad_alloc); it reads "4 x 6" and a line with too few values as points (a
+// warning at most); and it prints to stderr on every problem. So every file is checked
+// here first, and PCL reads only what passed.
 #include "readers.h"
 
 #include "cloud_layout.h"
@@ -226,9 +227,9 @@ checkPcd(const Source& source, std::string_view text)
     if (sizes_header[1] != data_size)
       source.fail("the compressed data does not decompress to " +
                   std::to_string(points) + " points");
-    // LZF's longest back reference is 3 bytes for 264 (the format of liblzf's lzf_d.c), so no
-    // compressed block expands more than 88 times: a header claiming more is a lie
-    // told to make the reader allocate.
+    // LZF's longest back reference is 3 bytes for 264 (the format of liblzf's
+    // lzf_d.c), so no compressed block expands more than 88 times: a header claiming
+    // more is a lie told to make the reader allocate.
     if (sizes_header[1] / 88 > sizes_header[0])
       source.fail("the compressed data is too short for " + std::to_string(points) +
                   " points");

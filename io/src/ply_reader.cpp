@@ -3,15 +3,15 @@
 // PLY, ascii and binary in either byte order.
 //
 // Our own parser, because each library reader has a defect that rules it out
-// (measured with PCL 1.13 and VTK 9.1 on the five PLY files of the shared data and on
-// malformed ones):
+// (measured by io/survey's reader_survey with PCL 1.13 and VTK 9.1, on the five PLY
+// files of the shared data and on malformed ones):
 // - pcl::PLYReader turns bun000's range_grid into an organized 512 x 400 cloud (204800
 //   points for its 40256 vertices), renames nx/ny/nz to normal_x/y/z, prints a warning
 //   for every face element, reads "4 x 6" as a vertex without an error, returns face
 //   indices beyond the vertices, and allocates what a header declares before reading:
 //   `element vertex -1`, or 2000000000 vertices in a 120-byte file, is std::bad_alloc
-//   (an abort where nobody catches it); on ascii files it takes about four times as
-//   long (bun_zipper: 130 ms, this parser 35 ms);
+//   (an abort where nobody catches it); on ascii files it takes four to six times as
+//   long (bun_zipper's vertices and faces: 265 ms, this parser 48 ms);
 // - vtkPLYReader keeps only the properties it knows (bun_zipper's confidence and
 //   intensity are lost), crashes (SIGSEGV) on an ascii line with fewer values than
 //   declared, on a vertex element without z and on a list length of 4294967280, and
@@ -543,7 +543,9 @@ walkPly(const Source& source,
 } // namespace
 
 void
-readPlyVertices(const Source& source, std::string_view text, pcl::PCLPointCloud2& cloud)
+readPlyVertices(const Source& source,
+                std::string_view text,
+                pcl::PCLPointCloud2& cloud)
 {
   const PlyHeader header = parsePlyHeader(source, text);
   const PlyElement* vertex = findElement(header, "vertex");

@@ -40,7 +40,9 @@ readOff(const Source& source,
 
 /** PLY: the vertex element's scalar properties as fields of \a cloud. */
 void
-readPlyVertices(const Source& source, std::string_view text, pcl::PCLPointCloud2& cloud);
+readPlyVertices(const Source& source,
+                std::string_view text,
+                pcl::PCLPointCloud2& cloud);
 
 /** PLY: the face element's vertex_indices (or vertex_index) list. */
 void

@@ -143,7 +143,9 @@ utf8Escaped(std::string_view text)
   out.reserve(text.size());
   std::size_t i = 0;
   while (i < text.size()) {
-    const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+    const auto byte = [&](std::size_t k) {
+      return static_cast<unsigned char>(text[k]);
+    };
     const unsigned char lead = byte(i);
     // The length of the sequence \a lead starts and the range of its second byte
     // (RFC 3629, section 4), which excludes overlong forms, surrogates and code points

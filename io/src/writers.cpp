@@ -182,7 +182,10 @@ writeAll(int fd, const void* data, std::size_t size)
 } // namespace
 
 bool
-writeFile(const std::string& path, const void* data, std::size_t size, std::string* error)
+writeFile(const std::string& path,
+          const void* data,
+          std::size_t size,
+          std::string* error)
 {
   const auto failWith = [&](int code) {
     return failed(error, "cannot write " + path + ": " +
