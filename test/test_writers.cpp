@@ -207,6 +207,12 @@ TEST_F(Writers, ALinkStaysALinkAndItsTargetIsReplaced)
   fs::create_symlink("real/mesh.ply", dir_ / "link.ply");
   ASSERT_TRUE(pcl::cocone::saveMesh(path("link.ply"), kVertices, kTriangles, "x"));
   EXPECT_TRUE(fs::is_symlink(dir_ / "link.ply"));
+  // A link to that link: both stay.
+  fs::create_symlink("link.ply", dir_ / "link2.ply");
+  ASSERT_TRUE(pcl::cocone::saveMesh(path("link2.ply"), kVertices, kTriangles, "y"));
+  EXPECT_TRUE(fs::is_symlink(dir_ / "link2.ply"));
+  EXPECT_TRUE(fs::is_symlink(dir_ / "link.ply"));
+  EXPECT_NE(contentsOf(target).find("written by y"), std::string::npos);
   EXPECT_EQ(contentsOf(target).rfind("ply\n", 0), 0u);
   EXPECT_EQ(namesIn(dir_ / "real"), std::vector<std::string>{"mesh.ply"});
 }

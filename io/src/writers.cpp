@@ -191,13 +191,16 @@ writeFile(const std::string& path,
     return failed(error, "cannot write " + path + ": " +
                              (code ? std::strerror(code) : "write error"));
   };
-  // A symbolic link stays a link: the file it names is the one replaced.
+  // A symbolic link stays a link: the file it names (through any chain of links, up to
+  // the kernel's own limit of 40) is the one replaced.
   fs::path target = path;
   std::error_code ec;
-  if (fs::is_symlink(fs::symlink_status(target, ec))) {
+  for (int hops = 0; hops < 40 && fs::is_symlink(fs::symlink_status(target, ec));
+       ++hops) {
     const fs::path link = fs::read_symlink(target, ec);
-    if (!ec)
-      target = link.is_absolute() ? link : target.parent_path() / link;
+    if (ec)
+      break;
+    target = link.is_absolute() ? link : target.parent_path() / link;
   }
   struct stat existing;
   const bool exists = ::stat(target.c_str(), &existing) == 0;
