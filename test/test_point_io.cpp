@@ -316,9 +316,11 @@ TEST_F(PointIo, MalformedA3dStream)
   const std::string short_state =
       expectSamplesFailure(write("short.pts", "d 0 0\np 1 2 3\n"));
   EXPECT_NE(short_state.find("line 1"), std::string::npos) << short_state;
-  const std::string word = expectSamplesFailure(write("word.pts", "n 0 x 1\np 1 2 3\n"));
+  const std::string word =
+      expectSamplesFailure(write("word.pts", "n 0 x 1\np 1 2 3\n"));
   EXPECT_NE(word.find("'x'"), std::string::npos) << word;
-  const std::string none = expectSamplesFailure(write("none.pts", "d 1 1 1\nq 0 0 0\n"));
+  const std::string none =
+      expectSamplesFailure(write("none.pts", "d 1 1 1\nq 0 0 0\n"));
   EXPECT_NE(none.find("no points"), std::string::npos) << none;
 }
 
@@ -836,16 +838,25 @@ TEST_F(PointIo, FaceIndicesOutOfRange)
 // Sizes, counts and offsets from a file are bounded before anything is allocated.
 
 /** Runs loadPointSamples (loadMeshFaces when \a faces is set) on \a path in a child
- * process whose address space is limited to \a megabytes, so that a reader allocating
- * what a header claims fails the test instead of the machine; the child reports
- * through its exit code whether the reader refused the file with a reason. */
+ * process whose address space may grow by \a megabytes only, so that a reader
+ * allocating what a header claims fails the test instead of the machine; the child
+ * reports through its exit code whether the reader refused the file with a reason. */
 void
 expectFailureWithin(const std::string& path, std::size_t megabytes, bool faces = false)
 {
   const pid_t child = ::fork();
   ASSERT_GE(child, 0);
   if (child == 0) {
-    const rlimit limit{megabytes << 20, megabytes << 20};
+    // On top of what the process has mapped already (its libraries, the test's heap).
+    std::size_t mapped_pages = 0;
+    if (std::FILE* statm = std::fopen("/proc/self/statm", "r")) {
+      if (std::fscanf(statm, "%zu", &mapped_pages) != 1)
+        mapped_pages = 0;
+      std::fclose(statm);
+    }
+    const auto page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+    const rlim_t bytes = mapped_pages * page + (megabytes << 20);
+    const rlimit limit{bytes, bytes};
     ::setrlimit(RLIMIT_AS, &limit);
     pcl::PCLPointCloud2 cloud;
     std::vector<pcl::Vertices> polygons;
@@ -911,15 +922,15 @@ TEST_F(PointIo, HeadersClaimingMoreThanTheFileHoldsAllocateNothing)
                           "COUNT 1 1 1\nWIDTH 300000000\nHEIGHT 1\n"
                           "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 300000000\n";
   // 3.6 GB of binary data in 120 bytes.
-  expectFailureWithin(write("binary.pcd", pcd + "DATA binary\n" + std::string(120, 'a')),
-                      256);
+  expectFailureWithin(
+      write("binary.pcd", pcd + "DATA binary\n" + std::string(120, 'a')), 256);
   // A compressed block that claims to unpack to 3.6 GB from 16 bytes: LZF cannot grow
   // anything more than 88 times.
   std::string sizes(8, '\0');
   const std::uint32_t claimed[2] = {16, 3600000000u};
   std::memcpy(&sizes[0], claimed, sizeof claimed);
-  const std::string lying = write("lying.pcd", pcd + "DATA binary_compressed\n" + sizes +
-                                                   std::string(16, 'a'));
+  const std::string lying = write(
+      "lying.pcd", pcd + "DATA binary_compressed\n" + sizes + std::string(16, 'a'));
   EXPECT_NE(expectSamplesFailure(lying).find("too short"), std::string::npos);
   expectFailureWithin(lying, 256);
   // More than the 4 GiB a cloud can describe.
@@ -1038,7 +1049,8 @@ TEST_F(PointIo, MessagesAreUtf8)
   // A file name that is not UTF-8 is escaped too.
   std::string name;
   pcl::PCLPointCloud2 cloud;
-  EXPECT_FALSE(pcl::cocone::loadPointSamples(write("n\xe9.xyz", "1 2\n"), cloud, &name));
+  EXPECT_FALSE(
+      pcl::cocone::loadPointSamples(write("n\xe9.xyz", "1 2\n"), cloud, &name));
   EXPECT_TRUE(isUtf8(name)) << name;
   EXPECT_NE(name.find("n\\xe9.xyz"), std::string::npos) << name;
 

@@ -839,7 +839,7 @@ TEST_F(Tools, HostilePcdHeadersFailWithOneLine)
 
 // --- writing over the input ----------------------------------------------------------
 
-/** Every file of \a folder whose name starts with a dot: the writers' temporary files. */
+/** The files of \a folder whose names start with a dot: the writers' temporary ones. */
 std::vector<std::string>
 hiddenFiles(const fs::path& folder)
 {
