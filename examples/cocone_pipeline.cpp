@@ -17,14 +17,13 @@
 #include <pcl/cocone/cocone_reconstruction.h>
 #include <pcl/cocone/core/mesh_topology.h>
 #include <pcl/cocone/io/point_io.h>
+#include <pcl/cocone/io/writers.h>
 #include <pcl/cocone/voronoi_decimation.h>
 #include <pcl/common/io.h>
 #include <pcl/common/point_tests.h>
 #include <pcl/console/print.h>
 #include <pcl/conversions.h>
 #include <pcl/filters/statistical_outlier_removal.h>
-#include <pcl/io/pcd_io.h>
-#include <pcl/io/ply_io.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
@@ -34,6 +33,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -56,7 +56,7 @@ constexpr const char* kProgram = "cocone_pipeline";
 // Errors and command line
 
 /** One line on stderr, exit code 1. Control characters are replaced so that any file
- * name still gives exactly one line. */
+ * name still gives exactly one line, and bytes that are not UTF-8 escaped. */
 [[noreturn]] void
 fail(std::string message)
 {
@@ -64,7 +64,8 @@ fail(std::string message)
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
       c = '?';
   std::fflush(stdout);
-  std::fprintf(stderr, "%s: %s\n", kProgram, message.c_str());
+  std::fprintf(stderr, "%s: %s\n", kProgram,
+               pcl::cocone::utf8Escaped(message).c_str());
   std::exit(EXIT_FAILURE);
 }
 
@@ -360,20 +361,18 @@ runPipeline(const Settings& settings)
                          static_cast<std::uint32_t>(polygon.vertices[2])});
   result.topology = pcl::cocone::analyzeTriangleMesh(triangles);
 
-  // 5. Write. PCL's PLY writer reports an unopenable file but not a short write, so the
-  // size is checked too.
+  // 5. Write, with the module's writer: binary PLY, written beside the output and
+  // renamed into place, so that a failed write leaves the files as they were (and the
+  // output may be the input).
+  std::vector<std::array<float, 3>> vertices;
+  vertices.reserve(cloud->size());
+  for (const pcl::PointXYZ& p : *cloud)
+    vertices.push_back({p.x, p.y, p.z});
   if (!stage("Saving " + settings.output, [&] {
-        if (pcl::io::savePLYFileBinary(settings.output, result.mesh) != 0)
-          return false;
-        std::error_code ec;
-        const std::uintmax_t size = fs::file_size(settings.output, ec);
-        return !ec && size >= 12 * cloud->size() + 13 * result.mesh.polygons.size();
-      })) {
-    std::error_code ec;
-    if (fs::is_regular_file(settings.output, ec))
-      fs::remove(settings.output, ec); // no partial file left behind
-    fail("cannot write " + settings.output);
-  }
+        return pcl::cocone::saveMesh(settings.output, vertices, triangles, kProgram,
+                                     &error);
+      }))
+    fail(error);
   return result;
 }
 
@@ -482,8 +481,11 @@ runDemo(const std::string& dir)
   Settings settings;
   settings.input = (fs::path(dir) / "scene.pcd").string();
   settings.output = (fs::path(dir) / "mesh.ply").string();
-  if (pcl::io::savePCDFileBinary(settings.input, scene) != 0)
-    fail("cannot write " + settings.input);
+  pcl::PCLPointCloud2 scene_blob;
+  pcl::toPCLPointCloud2(scene, scene_blob);
+  std::string error;
+  if (!pcl::cocone::saveCloud(settings.input, scene_blob, &error))
+    fail(error);
   std::printf("Generated %s: open hemisphere, open cylinder, closed sphere (%zu "
               "points) and %zu outliers\n",
               settings.input.c_str(), surface_points, outliers);
@@ -502,8 +504,10 @@ runDemo(const std::string& dir)
     coloured.push_back(p);
   }
   const std::string boundary = (fs::path(dir) / "boundary.pcd").string();
-  if (pcl::io::savePCDFileBinary(boundary, coloured) != 0)
-    fail("cannot write " + boundary);
+  pcl::PCLPointCloud2 coloured_blob;
+  pcl::toPCLPointCloud2(coloured, coloured_blob);
+  if (!pcl::cocone::saveCloud(boundary, coloured_blob, &error))
+    fail(error);
 
   // What a correct run gives: every outlier gone, three manifold components of genus 0
   // with three boundary loops (hemisphere 1, cylinder 2), no surface point lost.
@@ -532,6 +536,9 @@ int
 main(int argc, char** argv)
 {
   const Settings settings = parseCommandLine(argc, argv);
+  // Past a file size limit (ulimit -f) a write would raise SIGXFSZ and end the program
+  // with a core dump; ignored, the write fails with its reason, as any other.
+  std::signal(SIGXFSZ, SIG_IGN);
   // The classes report failures with PCL_ERROR and in getErrorMessage(); the latter
   // becomes this program's one line, so PCL's console stays quiet unless asked for.
   pcl::console::setVerbosityLevel(settings.verbose ? pcl::console::L_DEBUG

@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -275,6 +277,51 @@ TEST_F(PointIo, HoppePtsAndExtensionCase)
             (std::vector<float>{0, 0, 0, 1, 1, 1}));
   EXPECT_EQ(coordinates(expectSamples(write("upper.XYZ", "1 2 3\n"), 1)),
             (std::vector<float>{1, 2, 3}));
+}
+
+TEST_F(PointIo, HoppeA3dStreamAsWritten)
+{
+  // What WA3dStream writes: comments, colour state before the first point, a normal
+  // before each point, commands between points, and an end record after which the
+  // file is no longer a3d.
+  const std::string file = write("a3d.pts", "# Created by WA3dStream\n"
+                                            "# Created by ioa3d\n"
+                                            "d 0 0 0\n"
+                                            "s 0 0 0\n"
+                                            "g 1 0 0\n"
+                                            "n 0 0 1\n"
+                                            "p 0.5 0.25 0.125\n"
+                                            "n 0 1 0\n"
+                                            "p 1 2 3\n"
+                                            "o 1 1 0\n"
+                                            "O 0 3 0\n"
+                                            "f 0 0 0\n"
+                                            "p -4 5e1 6\n"
+                                            "q 0 0 0\n"
+                                            "no longer a3d\n");
+  const std::vector<float> expected = {0.5f, 0.25f, 0.125f, 1, 2, 3, -4, 50, 6};
+  EXPECT_EQ(coordinates(expectSamples(file, 3)), expected);
+  // The third line was where the reader used to stop ("'d' is not a number").
+  EXPECT_EQ(coordinates(expectSamples(write("d.pts", "# a\n# b\nd 0 0 0\np 1 2 3\n"),
+                                      1)),
+            (std::vector<float>{1, 2, 3}));
+}
+
+TEST_F(PointIo, MalformedA3dStream)
+{
+  const std::string polygon = expectSamplesFailure(
+      write("polygon.pts", "p 1 2 3\nP 0 0 0\nv 0 0 0\nv 1 0 0\nv 0 1 0\nE 0 0 0\n"));
+  EXPECT_NE(polygon.find("line 2"), std::string::npos) << polygon;
+  EXPECT_NE(polygon.find("polygon"), std::string::npos) << polygon;
+  const std::string short_state =
+      expectSamplesFailure(write("short.pts", "d 0 0\np 1 2 3\n"));
+  EXPECT_NE(short_state.find("line 1"), std::string::npos) << short_state;
+  const std::string word =
+      expectSamplesFailure(write("word.pts", "n 0 x 1\np 1 2 3\n"));
+  EXPECT_NE(word.find("'x'"), std::string::npos) << word;
+  const std::string none =
+      expectSamplesFailure(write("none.pts", "d 1 1 1\nq 0 0 0\n"));
+  EXPECT_NE(none.find("no points"), std::string::npos) << none;
 }
 
 // ---------------------------------------------------------------------------------
@@ -785,6 +832,232 @@ TEST_F(PointIo, FaceIndicesOutOfRange)
   expectFacesFailure(write("range.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"));
   expectFacesFailure(write("short.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
   expectFacesFailure(write("count.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n"));
+}
+
+// ---------------------------------------------------------------------------------
+// Sizes, counts and offsets from a file are bounded before anything is allocated.
+
+/** Runs loadPointSamples (loadMeshFaces when \a faces is set) on \a path in a child
+ * process whose address space may grow by \a megabytes only, so that a reader
+ * allocating what a header claims fails the test instead of the machine; the child
+ * reports through its exit code whether the reader refused the file with a reason. */
+void
+expectFailureWithin(const std::string& path, std::size_t megabytes, bool faces = false)
+{
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    // On top of what the process has mapped already (its libraries, the test's heap).
+    std::size_t mapped_pages = 0;
+    if (std::FILE* statm = std::fopen("/proc/self/statm", "r")) {
+      if (std::fscanf(statm, "%zu", &mapped_pages) != 1)
+        mapped_pages = 0;
+      std::fclose(statm);
+    }
+    const auto page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+    const rlim_t bytes = mapped_pages * page + (megabytes << 20);
+    const rlimit limit{bytes, bytes};
+    ::setrlimit(RLIMIT_AS, &limit);
+    pcl::PCLPointCloud2 cloud;
+    std::vector<pcl::Vertices> polygons;
+    std::string error;
+    const bool read = faces ? pcl::cocone::loadMeshFaces(path, polygons, &error)
+                            : pcl::cocone::loadPointSamples(path, cloud, &error);
+    const bool refused = !read && !error.empty() &&
+                         error.find("out of memory") == std::string::npos;
+    ::_exit(refused ? 0 : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
+      << path << ": not refused within " << megabytes << " MB (status " << status
+      << ")";
+}
+
+TEST_F(PointIo, PcdCountOverflowIsRefused)
+{
+  // SIZE x COUNT wraps around 2^64: a division by zero (SIGFPE) in the check, and a
+  // COUNT that wraps to a small point step reaches PCL, which crashes in
+  // readBodyBinary.
+  const std::string header = "VERSION 0.7\nFIELDS x y z w\nSIZE 4 4 4 4\nTYPE F F F F\n"
+                             "COUNT 1 1 1 4611686018427387901\nWIDTH 10\nHEIGHT 1\n"
+                             "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 10\nDATA binary\n";
+  const std::string file = write("count.pcd", header + std::string(400, '\0'));
+  const std::string error = expectSamplesFailure(file);
+  EXPECT_NE(error.find("'w' has an invalid SIZE, TYPE or COUNT"), std::string::npos)
+      << error;
+  // 4 * 4611686018427387904 wraps to 0, so the point step would be 12.
+  std::string wrapped = header;
+  wrapped.replace(wrapped.find("4611686018427387901"), 19, "4611686018427387904");
+  expectSamplesFailure(write("wrapped.pcd", wrapped + std::string(400, '\0')));
+  // The largest COUNT a 32-bit int holds is fine by itself, but not the point it makes.
+  std::string large = header;
+  large.replace(large.find("4611686018427387901"), 19, "2147483647");
+  const std::string large_error =
+      expectSamplesFailure(write("large.pcd", large + std::string(400, '\0')));
+  EXPECT_NE(large_error.find("too large"), std::string::npos) << large_error;
+}
+
+TEST_F(PointIo, PcdSizeBeyondIntIsRefused)
+{
+  // An int cast made 4294967300 a 4: the check passed and PCL allocated gigabytes.
+  const std::string file =
+      write("size.pcd", "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4294967300\n"
+                        "TYPE F F F\nCOUNT 1 1 1\nWIDTH 10\nHEIGHT 1\n"
+                        "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 10\nDATA binary\n" +
+                            std::string(150, '\0'));
+  const std::string error = expectSamplesFailure(file);
+  EXPECT_NE(error.find("'z' has an invalid SIZE"), std::string::npos) << error;
+  expectFailureWithin(file, 256);
+  for (const char* size : {"3", "16", "0", "-4", "4.0"})
+    expectSamplesFailure(write(std::string("size_") + size + ".pcd",
+                               std::string("VERSION 0.7\nFIELDS x y z\nSIZE 4 4 ") +
+                                   size + "\nTYPE F F F\nWIDTH 1\nHEIGHT 1\n"
+                                          "POINTS 1\nDATA ascii\n1 2 3\n"));
+}
+
+TEST_F(PointIo, HeadersClaimingMoreThanTheFileHoldsAllocateNothing)
+{
+  const std::string pcd = "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
+                          "COUNT 1 1 1\nWIDTH 300000000\nHEIGHT 1\n"
+                          "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 300000000\n";
+  // 3.6 GB of binary data in 120 bytes.
+  expectFailureWithin(
+      write("binary.pcd", pcd + "DATA binary\n" + std::string(120, 'a')), 256);
+  // A compressed block that claims to unpack to 3.6 GB from 16 bytes: LZF cannot grow
+  // anything more than 88 times.
+  std::string sizes(8, '\0');
+  const std::uint32_t claimed[2] = {16, 3600000000u};
+  std::memcpy(&sizes[0], claimed, sizeof claimed);
+  const std::string lying = write(
+      "lying.pcd", pcd + "DATA binary_compressed\n" + sizes + std::string(16, 'a'));
+  EXPECT_NE(expectSamplesFailure(lying).find("too short"), std::string::npos);
+  expectFailureWithin(lying, 256);
+  // More than the 4 GiB a cloud can describe.
+  std::string huge = pcd;
+  huge.replace(huge.find("SIZE 4 4 4"), 10, "SIZE 8 8 8");
+  huge.replace(huge.find("TYPE F F F"), 10, "TYPE F F F");
+  const std::string beyond = expectSamplesFailure(
+      write("beyond.pcd", huge + "DATA binary\n" + std::string(120, 'a')));
+  EXPECT_NE(beyond.find("4 GiB"), std::string::npos) << beyond;
+
+  expectFailureWithin(write("vertices.ply", "ply\nformat ascii 1.0\n"
+                                            "element vertex 2000000000\n"
+                                            "property double x\nproperty double y\n"
+                                            "property double z\nend_header\n1 2 3\n"),
+                      256);
+  expectFailureWithin(write("vertices.off", "OFF\n2000000000 1 0\n0 0 0\n"), 256);
+  expectFailureWithin(write("faces.off", "OFF\n3 2000000000 0\n0 0 0\n1 0 0\n0 1 0\n"
+                                         "4000000000 0 1 2\n"),
+                      256, true);
+}
+
+TEST_F(PointIo, MalformedCountsAreErrors)
+{
+  const std::string points = "0 0 0\n1 0 0\n0 1 0\n";
+  expectSamplesFailure(write("edges.off", "OFF\n3 1 x\n" + points + "3 0 1 2\n"));
+  expectSamplesFailure(write("extra.off", "OFF\n3 1 0 7\n" + points + "3 0 1 2\n"));
+  expectSamplesFailure(write("inline.off", "OFF 3 1 0 0\n" + points + "3 0 1 2\n"));
+  expectSamples(write("noedges.off", "OFF\n3 1\n" + points + "3 0 1 2\n"), 3);
+  const std::string ply = "ply\nformat ascii 1.0\nelement vertex 3 4\n"
+                          "property float x\nproperty float y\nproperty float z\n"
+                          "end_header\n";
+  expectSamplesFailure(write("element.ply", ply + points));
+  const std::string pcd_fields = "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
+                                 "COUNT 1 1 1\n";
+  expectSamplesFailure(write("width.pcd", pcd_fields + "WIDTH 3 3\nHEIGHT 1\n"
+                                                       "POINTS 3\nDATA ascii\n" +
+                                              points));
+  expectSamplesFailure(write("points.pcd", pcd_fields + "WIDTH 3\nHEIGHT 1\n"
+                                                        "POINTS 3 x\nDATA ascii\n" +
+                                               points));
+  expectSamplesFailure(write("data.pcd", pcd_fields + "WIDTH 3\nHEIGHT 1\n"
+                                                      "POINTS 3\nDATA ascii binary\n" +
+                                             points));
+  expectSamplesFailure(write("count.pcd", "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\n"
+                                          "TYPE F F F\nCOUNT 1 1 1.5\nWIDTH 1\n"
+                                          "HEIGHT 1\nPOINTS 1\nDATA ascii\n1 2 3\n"));
+}
+
+TEST_F(PointIo, AsciiPlyWithMoreLinesThanDeclared)
+{
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 2\n"
+                             "property float x\nproperty float y\nproperty float z\n";
+  const std::string extra = expectSamplesFailure(
+      write("extra.ply", header + "end_header\n1 2 3\n4 5 6\n7 8 9\n\n"));
+  EXPECT_NE(extra.find("line 10"), std::string::npos) << extra;
+  EXPECT_NE(extra.find("more 'vertex' lines than the 2"), std::string::npos) << extra;
+  expectFacesFailure(write("extra_faces.ply", header + "end_header\n1 2 3\n4 5 6\n"
+                                                       "7 8 9\n"));
+  // With faces after the vertices, the extra line is one line too many in all.
+  const std::string faces = header + "element face 1\n"
+                                     "property list uchar int vertex_indices\n"
+                                     "end_header\n";
+  const std::string mesh_file =
+      write("extra_mesh.ply", faces + "1 2 3\n4 5 6\n7 8 9\n3 0 1 1\n");
+  expectSamplesFailure(mesh_file);
+  expectFacesFailure(mesh_file);
+  // Blank lines at the end are not lines of data.
+  expectSamples(write("blank.ply", faces + "1 2 3\n4 5 6\n3 0 1 1\n\n  \n"), 2);
+}
+
+/** Whether \a text is valid UTF-8 (RFC 3629), checked independently of the library. */
+bool
+isUtf8(const std::string& text)
+{
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    std::size_t length = c < 0x80 ? 1 : (c >> 5) == 6 ? 2 : (c >> 4) == 14 ? 3
+                                    : (c >> 3) == 30  ? 4 : 0;
+    if (length == 0 || i + length > text.size())
+      return false;
+    std::uint32_t code = length == 1 ? c : c & (0x7f >> length);
+    for (std::size_t k = 1; k < length; ++k) {
+      const auto b = static_cast<unsigned char>(text[i + k]);
+      if ((b & 0xc0) != 0x80)
+        return false;
+      code = (code << 6) | (b & 0x3f);
+    }
+    const std::uint32_t least[] = {0, 0, 0x80, 0x800, 0x10000};
+    if (code < least[length] || code > 0x10ffff || (code >= 0xd800 && code <= 0xdfff))
+      return false;
+    i += length;
+  }
+  return true;
+}
+
+TEST_F(PointIo, MessagesAreUtf8)
+{
+  const std::string type = expectSamplesFailure(
+      write("type.ply", "ply\nformat ascii 1.0\nelement vertex 1\n"
+                        "property fl\xff\xfe" "at x\nend_header\n1\n"));
+  EXPECT_TRUE(isUtf8(type)) << type;
+  EXPECT_NE(type.find("'fl\\xff\\xfeat'"), std::string::npos) << type;
+  // Valid UTF-8 in a file stays as it is; a sequence cut by the excerpt is escaped.
+  const std::string word = expectSamplesFailure(write("word.xyz", "1 2 caf\xc3\xa9\n"));
+  EXPECT_NE(word.find("'caf\xc3\xa9'"), std::string::npos) << word;
+  const std::string cut = expectSamplesFailure(
+      write("cut.xyz", "1 2 " + std::string(23, 'a') + "\xe2\x82\xac\n"));
+  EXPECT_TRUE(isUtf8(cut)) << cut;
+  for (const char* bytes : {"\x80", "\xc0\xaf", "\xed\xa0\x80", "\xf4\x90\x80\x80",
+                            "\xe2\x82", "\xff"}) {
+    const std::string error =
+        expectSamplesFailure(write("bytes.obj", std::string("v 1 2 ") + bytes + "\n"));
+    EXPECT_TRUE(isUtf8(error)) << error;
+  }
+  // A file name that is not UTF-8 is escaped too.
+  std::string name;
+  pcl::PCLPointCloud2 cloud;
+  EXPECT_FALSE(
+      pcl::cocone::loadPointSamples(write("n\xe9.xyz", "1 2\n"), cloud, &name));
+  EXPECT_TRUE(isUtf8(name)) << name;
+  EXPECT_NE(name.find("n\\xe9.xyz"), std::string::npos) << name;
+
+  EXPECT_EQ(pcl::cocone::utf8Escaped("plain \xe2\x82\xac \xf0\x9f\x98\x80"),
+            "plain \xe2\x82\xac \xf0\x9f\x98\x80");
+  EXPECT_EQ(pcl::cocone::utf8Escaped("\xc0\xaf|\xed\xa0\x80|\xf4\x90\x80\x80|\xe2\x82"),
+            "\\xc0\\xaf|\\xed\\xa0\\x80|\\xf4\\x90\\x80\\x80|\\xe2\\x82");
 }
 
 // ---------------------------------------------------------------------------------

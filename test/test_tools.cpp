@@ -41,6 +41,7 @@ const std::string kBoundary = "pcl_boundary_sample_estimation";
 const std::string kReconstruction = "pcl_cocone_reconstruction";
 const std::string kDecimation = "pcl_voronoi_decimation";
 const std::vector<std::string> kTools{kBoundary, kReconstruction, kDecimation};
+const std::string kPipeline = "cocone_pipeline";
 
 // The build passes the folder of the executables; without the tools (built with
 // PCL_COCONE_BUILD_TOOLS=OFF) every test skips.
@@ -48,6 +49,12 @@ const std::vector<std::string> kTools{kBoundary, kReconstruction, kDecimation};
 const char* const kToolDir = PCL_COCONE_TOOL_DIR;
 #else
 const char* const kToolDir = nullptr;
+#endif
+// The pipeline example, when it is built.
+#ifdef PCL_COCONE_EXAMPLE_DIR
+const char* const kExampleDir = PCL_COCONE_EXAMPLE_DIR;
+#else
+const char* const kExampleDir = nullptr;
 #endif
 
 constexpr std::size_t kSpherePoints = 3000;
@@ -124,6 +131,9 @@ protected:
     writeText("empty.xyz", "# nothing but a comment\n\n");
     fs::create_directories(path("folder.xyz"));
     fs::create_directories(path("folder.pcd"));
+    // The tools' own output goes elsewhere, so that a folder holds only what the tools
+    // wrote into it.
+    fs::create_directories(path("logs"));
   }
 
   void
@@ -163,14 +173,17 @@ protected:
     }
   }
 
-  /** Runs \a tool with \a args (each one argument, no shell interpretation). */
+  /** Runs \a tool with \a args (each one argument, no shell interpretation), after
+   * the shell text \a launcher (e.g. "ulimit -f 4; "). */
   static ToolRun
-  run(const std::string& tool, const Args& args)
+  run(const std::string& tool, const Args& args, const std::string& launcher = "")
   {
     static int counter = 0;
     const std::string id = std::to_string(counter++);
-    return runTool("", fs::path(kToolDir) / tool, args, path("stdout_" + id),
-                   path("stderr_" + id));
+    const fs::path program =
+        tool == kPipeline ? fs::path(kExampleDir) / tool : fs::path(kToolDir) / tool;
+    return runTool(launcher, program, args, path("logs") / ("stdout_" + id),
+                   path("logs") / ("stderr_" + id));
   }
 
   static fs::path dir_;
@@ -814,6 +827,134 @@ TEST_F(Tools, FailedSavesFail)
       fs::create_symlink("/dev/full", full);
       expectOneLineFailure(run(tool, {input, full.string()}), "cannot write");
     }
+  }
+}
+
+TEST_F(Tools, HostilePcdHeadersFailWithOneLine)
+{
+  // The two reproductions of the reliability issue: a COUNT whose product with SIZE
+  // overflows (SIGFPE in the check, or PCL's readBodyBinary crashing), and a SIZE that
+  // an int cast cut to 4 (8.4 GB allocated, then "all points are collinear").
+  const std::string count = "VERSION 0.7\nFIELDS x y z w\nSIZE 4 4 4 4\nTYPE F F F F\n"
+                            "COUNT 1 1 1 4611686018427387901\nWIDTH 10\nHEIGHT 1\n"
+                            "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 10\nDATA binary\n";
+  writeText("hostile_count.pcd", count + std::string(400, '\0'));
+  const std::string size = "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4294967300\n"
+                           "TYPE F F F\nCOUNT 1 1 1\nWIDTH 10\nHEIGHT 1\n"
+                           "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 10\nDATA binary\n";
+  writeText("hostile_size.pcd", size + std::string(150, '\0'));
+  for (const char* input : {"hostile_count.pcd", "hostile_size.pcd"}) {
+    SCOPED_TRACE(input);
+    const std::string output = path("hostile_out.pcd").string();
+    expectOneLineFailure(run(kBoundary, {path(input).string(), output}),
+                         "has an invalid SIZE, TYPE or COUNT");
+    EXPECT_FALSE(fs::exists(output));
+  }
+}
+
+// --- writing over the input ----------------------------------------------------------
+
+/** The files of \a folder whose names start with a dot: the writers' temporary ones. */
+std::vector<std::string>
+hiddenFiles(const fs::path& folder)
+{
+  std::vector<std::string> names;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder))
+    if (entry.path().filename().string().front() == '.')
+      names.push_back(entry.path().filename().string());
+  return names;
+}
+
+/** A folder of its own for \a name, holding a copy of \a source as \a file. */
+fs::path
+freshCopy(const fs::path& folder, const fs::path& source, const std::string& file)
+{
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  fs::copy_file(source, folder / file);
+  return folder / file;
+}
+
+/** The tools (and the pipeline example, when built) with an input of the format each
+ * can also write, made from the sphere: the tool, the input, its contents. */
+struct SameFileCase
+{
+  std::string tool;
+  fs::path source;
+  std::string file;
+  Args options{};
+};
+
+/** The sphere as an ascii PLY of its vertices: an input the mesh writers do not write,
+ * so that their output differs from it. */
+fs::path
+spherePly(const std::vector<pcl::PointXYZ>& sphere, const fs::path& file)
+{
+  std::ofstream out(file);
+  out << "ply\nformat ascii 1.0\nelement vertex " << sphere.size()
+      << "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+  char line[96];
+  for (const pcl::PointXYZ& p : sphere) {
+    std::snprintf(line, sizeof line, "%.9g %.9g %.9g\n", p.x, p.y, p.z);
+    out << line;
+  }
+  return file;
+}
+
+TEST_F(Tools, OutputMayBeTheInput)
+{
+  const fs::path ply = spherePly(sphere_, path("sphere_points.ply"));
+  std::vector<SameFileCase> cases = {{kBoundary, path("sphere.pcd"), "same.pcd"},
+                                     {kDecimation, path("sphere.pcd"), "same.pcd"},
+                                     {kReconstruction, ply, "same.ply"}};
+  if (kExampleDir)
+    cases.push_back({kPipeline, ply, "same.ply"});
+  for (const SameFileCase& c : cases) {
+    SCOPED_TRACE(c.tool);
+    const fs::path folder = path("same_" + c.tool);
+    const fs::path file = freshCopy(folder, c.source, c.file);
+    const std::string before = readText(file);
+    expectSuccess(run(c.tool, {file.string(), file.string()}));
+    EXPECT_TRUE(readText(file) != before) << "the output did not replace the input";
+    if (c.file == "same.pcd")
+      EXPECT_GT(rows(loadCloud(file)), 0u);
+    else
+      EXPECT_FALSE(loadTriangles(file, kSpherePoints).empty());
+    EXPECT_TRUE(hiddenFiles(folder).empty());
+  }
+}
+
+TEST_F(Tools, FailedWriteLeavesTheInputAsItWas)
+{
+  const fs::path ply = spherePly(sphere_, path("limit_points.ply"));
+  // The decimation keeps most samples at a small rho, so that its output too is far
+  // larger than the limit.
+  std::vector<SameFileCase> cases = {
+      {kBoundary, path("sphere.pcd"), "same.pcd"},
+      {kDecimation, path("sphere.pcd"), "same.pcd", {"-rho", "0.05"}},
+      {kReconstruction, ply, "same.ply"}};
+  if (kExampleDir)
+    cases.push_back({kPipeline, ply, "same.ply"});
+  for (const SameFileCase& c : cases) {
+    SCOPED_TRACE(c.tool);
+    const fs::path folder = path("limit_" + c.tool);
+    const fs::path file = freshCopy(folder, c.source, c.file);
+    const std::string before = readText(file);
+    // Files may grow to 4 blocks (2 or 4 KB, whichever unit the shell counts in), far
+    // less than any output here, but enough for the tools' stdout. Reading is not
+    // limited. A tool ignores SIGXFSZ itself, so the write fails with EFBIG.
+    Args args = {file.string(), file.string()};
+    args.insert(args.end(), c.options.begin(), c.options.end());
+    const ToolRun r = run(c.tool, args, "ulimit -f 4; ");
+    if (c.tool == kPipeline) {
+      EXPECT_EQ(r.exit_code, 1);
+      EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
+    }
+    else {
+      expectOneLineFailure(r, "cannot write " + file.string() + ": File too large");
+    }
+    EXPECT_TRUE(readText(file) == before) << "the failed write changed the input";
+    EXPECT_TRUE(hiddenFiles(folder).empty());
   }
 }
 

@@ -2,16 +2,17 @@
 #include "tool_common.h"
 
 #include <pcl/cocone/io/point_io.h>
+#include <pcl/cocone/io/writers.h>
 #include <pcl/common/io.h>
 #include <pcl/console/print.h>
 #include <pcl/conversions.h>
-#include <pcl/io/pcd_io.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -158,138 +159,6 @@ fieldList(const pcl::PCLPointCloud2& cloud)
   return list;
 }
 
-// --- binary PLY ------------------------------------------------------------------
-
-/** Appends the 4 bytes of \a bits least significant first, whatever the host order. */
-void
-appendLittleEndian(std::string& out, std::uint32_t bits)
-{
-  for (int shift = 0; shift < 32; shift += 8)
-    out += static_cast<char>((bits >> shift) & 0xffu);
-}
-
-void
-appendFloat(std::string& out, float value)
-{
-  std::uint32_t bits;
-  std::memcpy(&bits, &value, sizeof bits);
-  appendLittleEndian(out, bits);
-}
-
-/** Appends the shortest text that reads back as the same float. */
-void
-appendText(std::string& out, float value)
-{
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  out.append(buffer, result.ptr);
-}
-
-void
-appendText(std::string& out, std::uint64_t value)
-{
-  char buffer[24];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  out.append(buffer, result.ptr);
-}
-
-std::string
-meshAsPly(const std::vector<std::array<float, 3>>& vertices,
-          const std::vector<TriangleIndices>& triangles)
-{
-  std::string out = "ply\nformat binary_little_endian 1.0\n"
-                    "comment written by " + program_name + "\n" +
-                    "element vertex " + std::to_string(vertices.size()) + "\n" +
-                    "property float x\nproperty float y\nproperty float z\n" +
-                    "element face " + std::to_string(triangles.size()) + "\n" +
-                    "property list uchar int vertex_indices\nend_header\n";
-  out.reserve(out.size() + 12 * vertices.size() + 13 * triangles.size());
-  for (const auto& v : vertices)
-    for (const float c : v)
-      appendFloat(out, c);
-  for (const TriangleIndices& t : triangles) {
-    out += static_cast<char>(3);
-    for (const std::uint32_t i : t)
-      appendLittleEndian(out, i);
-  }
-  return out;
-}
-
-std::string
-meshAsVtk(const std::vector<std::array<float, 3>>& vertices,
-          const std::vector<TriangleIndices>& triangles)
-{
-  std::string out = "# vtk DataFile Version 3.0\nwritten by " + program_name +
-                    "\nASCII\nDATASET POLYDATA\nPOINTS " +
-                    std::to_string(vertices.size()) + " float\n";
-  for (const auto& v : vertices) {
-    appendText(out, v[0]);
-    out += ' ';
-    appendText(out, v[1]);
-    out += ' ';
-    appendText(out, v[2]);
-    out += '\n';
-  }
-  out += "POLYGONS " + std::to_string(triangles.size()) + " " +
-         std::to_string(4 * triangles.size()) + "\n";
-  for (const TriangleIndices& t : triangles) {
-    out += '3';
-    for (const std::uint32_t i : t) {
-      out += ' ';
-      appendText(out, std::uint64_t{i});
-    }
-    out += '\n';
-  }
-  return out;
-}
-
-std::string
-meshAsObj(const std::vector<std::array<float, 3>>& vertices,
-          const std::vector<TriangleIndices>& triangles)
-{
-  std::string out = "# written by " + program_name + ": " +
-                    std::to_string(vertices.size()) + " vertices, " +
-                    std::to_string(triangles.size()) + " triangles\n";
-  for (const auto& v : vertices) {
-    out += 'v';
-    for (const float c : v) {
-      out += ' ';
-      appendText(out, c);
-    }
-    out += '\n';
-  }
-  for (const TriangleIndices& t : triangles) {
-    out += 'f';
-    for (const std::uint32_t i : t) {
-      out += ' ';
-      appendText(out, std::uint64_t{i} + 1); // OBJ counts from 1
-    }
-    out += '\n';
-  }
-  return out;
-}
-
-/** Writes \a contents to \a path; on failure removes what was written and fails. */
-void
-writeFile(const std::string& path, const std::string& contents)
-{
-  errno = 0;
-  std::FILE* file = std::fopen(path.c_str(), "wb");
-  if (!file)
-    fail("cannot write " + path + ": " + std::strerror(errno));
-  const bool written =
-      std::fwrite(contents.data(), 1, contents.size(), file) == contents.size();
-  const int write_error = errno;
-  // fclose flushes: a full disk may show up only here.
-  const bool closed = std::fclose(file) == 0;
-  if (!written || !closed) {
-    const int error = written ? errno : write_error;
-    std::remove(path.c_str());
-    fail("cannot write " + path + ": " +
-         (error ? std::strerror(error) : "write error"));
-  }
-}
-
 } // namespace
 
 // ---------------------------------------------------------------------------------
@@ -305,7 +174,7 @@ fail(const std::string& message)
     stage_open = false;
   }
   std::fflush(stdout);
-  print_error("%s: %s\n", program_name.c_str(), oneLine(message).c_str());
+  print_error("%s: %s\n", program_name.c_str(), utf8Escaped(oneLine(message)).c_str());
   std::exit(EXIT_FAILURE);
 }
 
@@ -385,6 +254,11 @@ CommandLine::CommandLine(ToolDescription tool, std::vector<Option> options)
 void
 CommandLine::parse(int argc, char** argv)
 {
+  // Past a file size limit (ulimit -f) a write raises SIGXFSZ, which would end the tool
+  // with a core dump and leave the temporary file of the write behind; ignored, the
+  // write fails with EFBIG and the tool says so in its one line, having removed it.
+  std::signal(SIGXFSZ, SIG_IGN);
+
   // Help wins over everything else on the line, as in PCL's tools.
   for (int i = 1; i < argc; ++i)
     if (std::strcmp(argv[i], "-h") == 0 || std::strcmp(argv[i], "--help") == 0) {
@@ -667,18 +541,9 @@ void
 saveCloud(const std::string& path, const pcl::PCLPointCloud2& cloud)
 {
   Stage stage("Saving", path);
-  // PCL's PCDWriter::writeBinary creates files with mode 0600, writes through mmap (a
-  // full disk gives "Error during write ()!" without the reason, or SIGBUS), throws
-  // when it cannot open the file and logs its locking at debug level. Its header with
-  // the data written here is the same file, made with the user's umask and failing
-  // with the system's reason.
-  if (cloud.data.size() != pointCount(cloud) * cloud.point_step)
-    fail("internal error: the cloud for " + path + " has an inconsistent data size");
-  std::string contents = pcl::PCDWriter().generateHeaderBinary(
-      cloud, Eigen::Vector4f::Zero(), Eigen::Quaternionf::Identity());
-  contents += "DATA binary\n";
-  contents.append(reinterpret_cast<const char*>(cloud.data.data()), cloud.data.size());
-  writeFile(path, contents);
+  std::string error;
+  if (!pcl::cocone::saveCloud(path, cloud, &error))
+    fail(error);
   stage.done(pointCount(cloud), "points");
 }
 
@@ -688,17 +553,9 @@ saveMesh(const std::string& path,
          const std::vector<TriangleIndices>& triangles)
 {
   Stage stage("Saving", path);
-  const std::string extension = lowerCase(fs::path(path).extension().string());
-  std::string contents;
-  if (extension == ".ply")
-    contents = meshAsPly(vertices, triangles);
-  else if (extension == ".vtk")
-    contents = meshAsVtk(vertices, triangles);
-  else if (extension == ".obj")
-    contents = meshAsObj(vertices, triangles);
-  else
-    fail("unsupported mesh format " + inQuotes(path) + " (expected .ply, .vtk, .obj)");
-  writeFile(path, contents);
+  std::string error;
+  if (!pcl::cocone::saveMesh(path, vertices, triangles, program_name, &error))
+    fail(error);
   stage.done(triangles.size(), "triangles");
 }
 

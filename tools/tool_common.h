@@ -38,7 +38,8 @@ namespace tools {
 /** \brief Prints "<program>: <message>" as one line on stderr and exits with code 1.
  * An open stage line on stdout is closed first ("[failed]"), so that the two streams
  * do not share a line on a terminal. Control characters in \a message are replaced so
- * that the promise of one line holds for any file name or argument. The message shows
+ * that the promise of one line holds for any file name or argument, and bytes that are
+ * not UTF-8 are escaped (pcl::cocone::utf8Escaped). The message shows
  * even when called within a QuietPcl scope. */
 [[noreturn]] void
 fail(const std::string& message);
@@ -131,7 +132,8 @@ public:
    * value, a value that is not a number (an integer where one is needed) or is out of
    * range, and an output path with an unsupported extension or in a missing folder.
    * With -v, raises PCL's console verbosity to L_DEBUG for the whole run (QuietPcl
-   * then silences nothing). */
+   * then silences nothing). Ignores SIGXFSZ, so that a write past a file size limit
+   * fails with its reason instead of ending the tool (see pcl::cocone::writeFile). */
   void
   parse(int argc, char** argv);
 

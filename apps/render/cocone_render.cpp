@@ -12,6 +12,7 @@
 
 #include <pcl/PolygonMesh.h>
 #include <pcl/cocone/io/point_io.h>
+#include <pcl/cocone/io/writers.h>
 #include <pcl/console/print.h>
 #include <pcl/conversions.h>
 #include <pcl/io/vtk_lib_io.h>
@@ -669,23 +670,6 @@ openDisplay()
   return display;
 }
 
-void
-writeFile(const std::string& path, const unsigned char* data, std::size_t size)
-{
-  errno = 0;
-  std::FILE* file = std::fopen(path.c_str(), "wb");
-  if (!file)
-    fail("cannot write " + path + ": " + std::strerror(errno));
-  const bool written = std::fwrite(data, 1, size, file) == size;
-  const int write_error = errno;
-  const bool closed = std::fclose(file) == 0;
-  if (!written || !closed) {
-    const int error = written ? errno : write_error;
-    std::remove(path.c_str());
-    fail("cannot write " + path + ": " + (error ? std::strerror(error) : "write error"));
-  }
-}
-
 } // namespace
 
 int
@@ -814,7 +798,9 @@ main(int argc, char** argv)
   if (!bytes || bytes->GetNumberOfValues() == 0)
     fail("cannot encode the PNG");
   const std::size_t size = static_cast<std::size_t>(bytes->GetNumberOfValues());
-  writeFile(cmd.output(), bytes->GetPointer(0), size);
+  std::string error;
+  if (!pcl::cocone::writeFile(cmd.output(), bytes->GetPointer(0), size, &error))
+    fail(error);
   saving.done(size, "bytes");
 
   pcl::console::print_info("Camera: -camera %s\n", cameraText(camera).c_str());

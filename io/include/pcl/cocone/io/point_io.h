@@ -12,6 +12,7 @@
 #include <pcl/cocone/io/export.h>
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace pcl {
@@ -28,12 +29,24 @@ namespace cocone {
  * - `.off`: OFF, COFF, NOFF headers; the vertices;
  * - `.xyz`, `.pts`, `.txt`: one point per line, whitespace-separated columns whose first
  *   three are x y z (further columns are ignored); blank lines and lines starting with
- *   `#` are skipped; Hoppe's `p x y z` lines (and his `n nx ny nz` normal lines, which
- *   are ignored) are accepted.
+ *   `#` are skipped. Hoppe's a3d streams (his `.pts` files) are read as written: the
+ *   points are the `p x y z` records; the normal, colour and command records (`n`,
+ *   `d`, `s`, `g`, `o`, `O`, `f`, each with three numbers) are checked and set aside,
+ *   `q` ends the stream, and polygon or polyline records (`P`, `L`, `v`, `E`) are an
+ *   error.
  *
  * Meshes are read as their vertices: the vertices are the samples. The cloud is
  * unorganized (height 1) unless the file itself is organized (PCD), and keeps every
  * point, NaN ones included, in file order.
+ *
+ * Every count, size and offset a file declares is checked, with arithmetic that cannot
+ * overflow, against the bytes the file really has before anything is allocated, so
+ * that memory stays bounded by the file's size: binary data must be there in full, a
+ * compressed PCD block may not claim more than the 88-fold growth LZF allows, and
+ * ascii data are counted line by line. Beyond that, two documented limits: a cloud
+ * holds at most 4 GiB of point data (PCLPointCloud2's row_step has 32 bits), and a
+ * PLY element at most 65535 properties. Malformed counts, and an ascii PLY with more
+ * lines than its header declares, are errors.
  * \param[in] path the file to read
  * \param[out] cloud the samples, with float fields x, y, z at least, in the file's
  *             units; point i is the i-th point (vertex) of the file
@@ -59,6 +72,15 @@ PCL_COCONE_IO_EXPORT bool
 loadMeshFaces(const std::string& path,
               std::vector<pcl::Vertices>& faces,
               std::string* error = nullptr);
+
+/** \brief \a text with every byte that is not part of a valid UTF-8 sequence written
+ * as `\xHH` (hexadecimal), so that a message quoting a file's bytes or a path is valid
+ * UTF-8. The readers' and writers' reasons are already escaped so.
+ * \param[in] text any bytes
+ * \return the same text where it is valid UTF-8 (overlong forms, surrogates and code
+ *         points beyond U+10FFFF are not), escapes elsewhere */
+PCL_COCONE_IO_EXPORT std::string
+utf8Escaped(std::string_view text);
 
 } // namespace cocone
 } // namespace pcl
