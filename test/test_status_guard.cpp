@@ -165,7 +165,8 @@ TEST(StatusGuard, EveryCoreEntryTurnsOutOfMemoryIntoAStatus)
   message.clear();
   {
     RefuseLargeBlocks refuse;
-    EXPECT_EQ(pcl::cocone::reconstructSurface(voronoi, {}, triangles, report, &message),
+    EXPECT_EQ(pcl::cocone::reconstructSurface(voronoi, {}, triangles, report, nullptr,
+                                              &message),
               Status::internal_error);
   }
   std::cout << "[ measured ] reconstructSurface(): " << message << std::endl;

@@ -16,6 +16,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -33,6 +34,7 @@ using Args = std::vector<std::string>;
 using pcl::cocone::test::expectOneLineFailure;
 using pcl::cocone::test::expectSuccess;
 using pcl::cocone::test::readText;
+using pcl::cocone::test::shellQuote;
 using pcl::cocone::test::runTool;
 using pcl::cocone::test::sampleTrefoilKnot;
 using pcl::cocone::test::ToolRun;
@@ -564,6 +566,35 @@ TEST_F(Tools, ReconstructionOfTooSparseCloudSaysWhy)
   ASSERT_TRUE(t.found) << all.out;
   EXPECT_TRUE(t.closed);
   EXPECT_EQ(t.vertices, 600);
+}
+
+// On a terminal the stage line shows the share done; piped, the output stays as it was.
+// script(1) gives the tool a pseudo-terminal.
+TEST_F(Tools, ProgressShowsOnATerminalOnly)
+{
+  if (std::system("command -v script > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "script(1) is not installed: no pseudo-terminal to test with";
+  const std::string input = path("sphere.pcd").string();
+  for (const std::string& tool : kTools) {
+    const fs::path log = path("logs") / ("terminal_" + tool);
+    const std::string command =
+        (fs::path(kToolDir) / tool).string() + " " + shellQuote(input) + " " +
+        shellQuote(path("terminal_" + tool + (tool == kReconstruction ? ".ply" : ".pcd"))
+                       .string());
+    ASSERT_EQ(std::system(("script -qec " + shellQuote(command) + " /dev/null > " +
+                           shellQuote(log.string()) + " 2>&1")
+                              .c_str()),
+              0)
+        << tool;
+    const std::string shown = readText(log);
+    EXPECT_NE(shown.find("%\b"), std::string::npos) << tool << ": " << shown;
+    EXPECT_NE(shown.find("[done, "), std::string::npos) << tool << ": " << shown;
+    const ToolRun piped =
+        run(tool, {input, path("piped_" + tool + (tool == kReconstruction ? ".ply" : ".pcd"))
+                              .string()});
+    expectSuccess(piped);
+    EXPECT_EQ(piped.out.find('\b'), std::string::npos) << tool << ": " << piped.out;
+  }
 }
 
 TEST_F(Tools, ReconstructionDropsNanPointsAndRenumbersVertices)

@@ -60,6 +60,7 @@ compute(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLine& 
   estimation.setBoundaryBandRings(cmd.count("-band"));
   estimation.setRimRowCompletion(!cmd.flag("-no_rim_completion"));
   estimation.setNumberOfThreads(cmd.count("-threads"));
+  estimation.setProgressCallback(terminalProgress());
   if (cmd.verbose())
     printDetail("Parameters",
                 "rho " + formatNumber(estimation.getRatioBound()) + ", alpha " +

@@ -94,6 +94,7 @@ reconstruct(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLi
   cocone.setBoundaryDetection(!cmd.flag("-no_boundary"));
   cocone.setHoleStitching(!cmd.flag("-no_stitch"));
   cocone.setNumberOfThreads(cmd.count("-threads"));
+  cocone.setProgressCallback(terminalProgress());
   if (cmd.verbose())
     printDetail("Parameters",
                 "theta " + formatNumber(cocone.getCoconeAngle()) + " rad, rho " +

@@ -15,10 +15,13 @@
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <system_error>
+
+#include <unistd.h>
 
 namespace pcl {
 namespace cocone {
@@ -37,6 +40,20 @@ using pcl::console::print_value;
 std::string program_name = "error";
 bool stage_open = false;
 bool verbose_run = false;
+// Characters of a percentage shown at the end of the open stage line (terminalProgress).
+int progress_shown = 0;
+
+/** Erases the percentage shown at the end of the stage line, if any. */
+void
+eraseProgress()
+{
+  if (progress_shown == 0)
+    return;
+  std::printf("%.*s%*s%.*s", progress_shown, "\b\b\b\b\b", progress_shown, "",
+              progress_shown, "\b\b\b\b\b");
+  std::fflush(stdout);
+  progress_shown = 0;
+}
 
 constexpr std::size_t help_column = 24; // where option descriptions start
 constexpr std::size_t help_width = 88;
@@ -169,6 +186,7 @@ fail(const std::string& message)
   // Even from within a QuietPcl scope, the message (and "[failed]") must show.
   if (pcl::console::getVerbosityLevel() < pcl::console::L_INFO)
     pcl::console::setVerbosityLevel(pcl::console::L_INFO);
+  eraseProgress();
   if (stage_open) {
     print_info("[failed]\n");
     stage_open = false;
@@ -410,12 +428,32 @@ Stage::Stage(const std::string& action, const std::string& object)
 void
 Stage::done(std::size_t count, const std::string& unit)
 {
+  eraseProgress();
   print_info("[done, ");
   print_value("%g", timer_.toc());
   print_info(" ms : ");
   print_value("%zu", count);
   print_info(" %s]\n", unit.c_str());
   stage_open = false;
+}
+
+std::function<bool(double)>
+terminalProgress()
+{
+  // Only where a person watches: on a terminal, with the stage line open (not with -v,
+  // whose stage lines end at once). Piped or redirected output stays as it was.
+  if (verbose_run || !isatty(fileno(stdout)))
+    return nullptr;
+  return [last = -1](double share) mutable {
+    const int percent = static_cast<int>(100 * share);
+    if (percent == last || !stage_open)
+      return true;
+    last = percent;
+    eraseProgress();
+    progress_shown = std::printf("%d%%", percent);
+    std::fflush(stdout);
+    return true;
+  };
 }
 
 std::size_t

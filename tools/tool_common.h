@@ -212,6 +212,13 @@ using StageWork = std::function<std::optional<std::size_t>(std::string& reason)>
 std::size_t
 computeStage(const std::string& what, const std::string& unit, const StageWork& work);
 
+/** \brief A progress callback for the classes (setProgressCallback) that shows the
+ * share done as a percentage at the end of the open stage line, on a terminal only;
+ * empty when stdout is not a terminal or with -v, so that logs and pipes see the same
+ * lines as before. Never cancels. */
+std::function<bool(double)>
+terminalProgress();
+
 /** \brief Prints "<label>: <value>\n" in PCL's colours (label as info, value as value);
  * for the -v details. */
 void

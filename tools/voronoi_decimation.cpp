@@ -56,6 +56,7 @@ decimate(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLine&
   decimation.setThinRims(!cmd.flag("-keep_rims"));
   decimation.setRelaxationIterations(cmd.count("-relax"));
   decimation.setNumberOfThreads(cmd.count("-threads"));
+  decimation.setProgressCallback(terminalProgress());
   if (cmd.verbose())
     printDetail("Parameters",
                 "rho " + formatNumber(decimation.getRatioBound()) + ", theta " +

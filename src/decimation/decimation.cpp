@@ -320,8 +320,10 @@ runDecimate(const VoronoiCocone& voronoi, DiagramState& d, double rho,
     }
   }
   levels.removals = removals;
-  if (progress)
-    progress(1.0);
+  if (progress && !progress(1.0)) {
+    detail::setMessage(message, "cancelled");
+    return Status::internal_error;
+  }
   return Status::ok;
 }
 
@@ -380,13 +382,20 @@ decimate(VoronoiCocone&& voronoi,
                                     std::to_string(voronoi.size()) + " samples");
     return Status::invalid_parameter;
   }
+  // The relaxation takes about a tenth of a run when it runs.
+  const ProgressCallback removing = progressPart(progress, 0, relaxing ? 0.9 : 1);
   Status status = detail::runGuarded("decimation", message, [&] {
     return runDecimate(voronoi, d, parameters.ratio_bound, parameters.thin_rims,
-                       boundary, levels, progress, message);
+                       boundary, levels, removing, message);
   });
-  if (status == Status::ok && relaxing)
+  if (status == Status::ok && relaxing) {
     status = relaxLevels(voronoi, boundary, parameters.relaxation_iterations,
                          parameters.ratio_bound, levels, message);
+    if (status == Status::ok && progress && !progress(1)) {
+      detail::setMessage(message, "cancelled");
+      status = Status::internal_error;
+    }
+  }
   // Consumed, however the run ended: nothing of the diagram applies any more.
   d = DiagramState();
   return status;

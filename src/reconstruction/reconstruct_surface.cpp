@@ -4,6 +4,7 @@
 // become part of the surface: the cocone candidates (group 0) and, later, the Delaunay
 // triangles offered to each hole (group k for the k-th hole) and the triangles of
 // fills and insertions.
+#include "common/progress.h"
 #include "common/status_guard.h"
 #include "reconstruction/candidates.h"
 #include "reconstruction/crossings.h"
@@ -71,8 +72,12 @@ flagBoundarySamples(const VoronoiCocone& voronoi,
 /** The stages, in order, into \a output and \a report (reset first). */
 void
 runStages(const VoronoiCocone& voronoi, const ReconstructionParameters& parameters,
-          std::vector<TriangleIndices>& output, ReconstructionReport& report)
+          std::vector<TriangleIndices>& output, ReconstructionReport& report,
+          const ProgressCallback& callback)
 {
+  // Each stage reports its end as the share of a typical run done by then (measured on
+  // the benchmark's scans: stitching takes the most on noisy ones).
+  const detail::StageProgress progress(callback, 0, 1);
   using Clock = std::chrono::steady_clock;
   Clock::time_point start = Clock::now();
   const auto lap = [&](double& seconds, const char* stage) {
@@ -89,21 +94,25 @@ runStages(const VoronoiCocone& voronoi, const ReconstructionParameters& paramete
   detail::MeshState mesh(voronoi.centeredPoints());
   flagBoundarySamples(voronoi, parameters, report);
   lap(timings.boundary, "boundary samples");
+  progress.report(0.05);
 
   const std::vector<double> spacing = detail::measureLocalSpacing(voronoi);
   report.candidate_triangles = detail::collectCandidates(voronoi, boundary, mesh);
   report.lid_triangles = detail::removeLids(mesh, spacing, boundary, ratio, threads);
   lap(timings.candidates, "candidates and lids");
+  progress.report(0.2);
 
   detail::Pruner pruner(mesh, boundary, threads);
   report.pruned_triangles = pruner.prune(detail::kCoconeGroup);
   lap(timings.pruning, "pruning");
+  progress.report(0.3);
 
   detail::PinchResolver pinches(mesh);
   detail::Walker walker(mesh, pinches, threads);
   report.walked_triangles = walker.walkAll();
   report.pinch_removed_triangles += pinches.resolve();
   lap(timings.walk, "manifold extraction");
+  progress.report(0.55);
 
   // Every loop gets a turn at stitching, and another only when the mesh changed within
   // its bounding box since (a loop that stayed open would stay open again): removing
@@ -130,6 +139,7 @@ runStages(const VoronoiCocone& voronoi, const ReconstructionParameters& paramete
   report.stitched_triangles = stitcher.stitchedTriangles();
   report.open_loops = mesh.traceLoops();
   lap(timings.stitching, "stitching");
+  progress.report(0.9);
 
   detail::orientClosedComponentsOutward(mesh);
   output.clear();
@@ -140,6 +150,7 @@ runStages(const VoronoiCocone& voronoi, const ReconstructionParameters& paramete
     if (mesh.meshDegree(v) == 0)
       report.unused_samples.push_back(v);
   lap(timings.finishing, "orientation and loops");
+  progress.report(1);
 }
 
 } // namespace
@@ -149,6 +160,7 @@ reconstructSurface(const VoronoiCocone& voronoi,
                    const ReconstructionParameters& parameters,
                    std::vector<TriangleIndices>& triangles,
                    ReconstructionReport& report,
+                   const ProgressCallback& progress,
                    std::string* message)
 {
   triangles.clear();
@@ -163,7 +175,7 @@ reconstructSurface(const VoronoiCocone& voronoi,
     return Status::invalid_parameter;
   }
   const Status status = detail::runGuarded("the reconstruction", message, [&] {
-    runStages(voronoi, parameters, triangles, report);
+    runStages(voronoi, parameters, triangles, report, progress);
     return Status::ok;
   });
   if (status != Status::ok) {

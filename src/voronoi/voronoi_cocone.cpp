@@ -2,6 +2,7 @@
 // VoronoiCocone (core/voronoi_cocone.h): the Delaunay triangulation of the samples, its
 // per-sample geometry (cell_geometry.cpp) and the queries on what it keeps.
 #include "common/parallel.h"
+#include "common/progress.h"
 #include "common/status_guard.h"
 #include "voronoi/cell_geometry.h"
 #include "voronoi/cgal_delaunay.h"
@@ -294,8 +295,11 @@ namespace {
  * its own, whose message names it. */
 Status
 buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
-             const std::vector<Eigen::Vector3d>& points)
+             const std::vector<Eigen::Vector3d>& points, const ProgressCallback& callback)
 {
+  // The triangulation takes about three quarters of compute(), the geometry the rest.
+  const StageProgress progress(callback, 0, 1);
+  const StageProgress triangulation = progress.part(0, 0.75);
   d = DiagramState();
   const auto fail = [&](Status status, const std::string& message) {
     DiagramState fresh;
@@ -380,10 +384,13 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
         CGAL::spatial_sort<CGAL::Parallel_if_available_tag>(
             order.begin(), order.end(), SortTraits(CGAL::make_property_map(input)));
         VertexHandle hint;
+        std::size_t inserted = 0;
         for (const std::size_t i : order) {
           hint = dt.insert(input[i], hint);
           if (hint != VertexHandle())
             hint->info() = static_cast<SampleIndex>(i);
+          if ((++inserted & 0xffffu) == 0)
+            triangulation.report(double(inserted) / double(n));
         }
       }
 
@@ -433,6 +440,7 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
             n, d.unique_count, d.timings.delaunay);
   const Clock::time_point geometry_start = Clock::now();
   status = runGuarded("the Voronoi geometry", &message, [&] {
+    progress.report(0.75);
     runInArena(parameters.threads,
                [&] { computeGeometry(dt, d, std::sin(parameters.cocone_angle)); });
     return Status::ok;
@@ -443,6 +451,12 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
   PCL_DEBUG("[pcl::cocone::VoronoiCocone] poles, radii and cocone marks: %.3f s, %zu "
             "marked triangles\n",
             d.timings.geometry, d.triangles.size());
+  status = runGuarded("the Voronoi geometry", &message, [&] {
+    progress.report(1);
+    return Status::ok;
+  });
+  if (status != Status::ok)
+    return fail(status, message);
   d.status = Status::ok;
   d.message.clear();
   return Status::ok;
@@ -451,11 +465,13 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
 } // namespace
 
 Status
-VoronoiCocone::compute(const std::vector<Eigen::Vector3d>& points)
+VoronoiCocone::compute(const std::vector<Eigen::Vector3d>& points,
+                       const ProgressCallback& progress)
 {
   std::string message;
-  const Status status = runGuarded("building the diagram", &message,
-                                   [&] { return buildDiagram(*impl_, parameters_, points); });
+  const Status status = runGuarded("building the diagram", &message, [&] {
+    return buildDiagram(*impl_, parameters_, points, progress);
+  });
   if (impl_->status != status) {
     // Something failed after the stages' own guards: forget the half-built diagram.
     *impl_ = Impl();

@@ -12,7 +12,9 @@
 
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pcl {
@@ -149,6 +151,24 @@ public:
   getRimRowCompletion() const
   {
     return parameters_.complete_rim_row;
+  }
+
+  /** \brief Set a callback for the progress of compute(): it is called from the
+   * thread that called compute() with the share of the run done (0 to 1), a few times
+   * per stage; returning false cancels the run, which then fails with the message
+   * "cancelled" (getErrorMessage()). The same type as cocone::ProgressCallback.
+   * \param[in] callback the callback; an empty one (default) is never called */
+  void
+  setProgressCallback(std::function<bool(double)> callback)
+  {
+    progress_ = std::move(callback);
+  }
+  /** \brief Get the progress callback (see setProgressCallback).
+   * \return the callback; empty by default */
+  const std::function<bool(double)>&
+  getProgressCallback() const
+  {
+    return progress_;
   }
 
   /** \brief Number of threads for the per-sample work; 0 (default) uses every core.
@@ -292,6 +312,7 @@ private:
   std::vector<float> ratios_;
   std::size_t boundary_count_ = 0;
   pcl::Indices far_indices_;
+  std::function<bool(double)> progress_;
   std::string error_message_;
   std::string warning_message_;
 };

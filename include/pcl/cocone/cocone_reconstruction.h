@@ -11,7 +11,9 @@
 #include <pcl/surface/reconstruction.h>
 
 #include <cstdint>
+#include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pcl {
@@ -163,6 +165,24 @@ public:
   getHoleStitching() const
   {
     return parameters_.stitch_holes;
+  }
+
+  /** \brief Set a callback for the progress of reconstruct(): it is called from the
+   * thread that called reconstruct() with the share of the run done (0 to 1), a few times
+   * per stage; returning false cancels the run, which then fails with the message
+   * "cancelled" (getErrorMessage()). The same type as cocone::ProgressCallback.
+   * \param[in] callback the callback; an empty one (default) is never called */
+  void
+  setProgressCallback(std::function<bool(double)> callback)
+  {
+    progress_ = std::move(callback);
+  }
+  /** \brief Get the progress callback (see setProgressCallback).
+   * \return the callback; empty by default */
+  const std::function<bool(double)>&
+  getProgressCallback() const
+  {
+    return progress_;
   }
 
   /** \brief Number of threads for the per-sample work; 0 (default) uses every core.
@@ -331,6 +351,7 @@ private:
   std::vector<pcl::Vertices> boundary_loops_;
   pcl::Indices unused_indices_;
   pcl::Indices far_indices_;
+  std::function<bool(double)> progress_;
   std::string error_message_;
   std::string warning_message_;
 };

@@ -9,7 +9,9 @@
 #include <pcl/cocone/parameters.h>
 #include <pcl/filters/filter_indices.h>
 
+#include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pcl {
@@ -142,6 +144,24 @@ public:
     return parameters_.relaxation_iterations;
   }
 
+  /** \brief Set a callback for the progress of filter(): it is called from the
+   * thread that called filter() with the share of the run done (0 to 1), a few times
+   * per stage; returning false cancels the run, which then fails with the message
+   * "cancelled" (getErrorMessage()). The same type as cocone::ProgressCallback.
+   * \param[in] callback the callback; an empty one (default) is never called */
+  void
+  setProgressCallback(std::function<bool(double)> callback)
+  {
+    progress_ = std::move(callback);
+  }
+  /** \brief Get the progress callback (see setProgressCallback).
+   * \return the callback; empty by default */
+  const std::function<bool(double)>&
+  getProgressCallback() const
+  {
+    return progress_;
+  }
+
   /** \brief Number of threads for the per-sample work; 0 (default) uses every core.
    * \param[in] threads the number of threads; 0 for automatic; any value is accepted */
   void
@@ -244,6 +264,7 @@ private:
   cocone::DecimationParameters parameters_;
   std::vector<double> removal_levels_;
   pcl::Indices far_indices_;
+  std::function<bool(double)> progress_;
   std::string error_message_;
   std::string warning_message_;
 };

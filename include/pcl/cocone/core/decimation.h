@@ -64,8 +64,8 @@ struct DecimationLevels
  * \param[out] levels per-sample removal levels, indexed by SampleIndex (see
  *             DecimationLevels); reset first. A cancelled run leaves the removals made
  *             so far
- * \param[in] progress optional, called with the share of DECIMATE done every 1024
- *            removals and with 1 at the end; returning false cancels
+ * \param[in] progress optional, called from this thread with the share done every
+ *            1024 removals and with 1 at the end; returning false cancels
  *            (Status::internal_error, message "cancelled")
  * \param[out] message if given, the one-line reason of a failure (unchanged on
  *             success)

@@ -58,6 +58,9 @@ struct ReconstructionReport : ReconstructionStatistics
  * \param[out] triangles oriented triangles of representative sample indices (cleared
  *             first; empty on failure)
  * \param[out] report the stages' numbers, open loops and unused samples (reset first)
+ * \param[in] progress optional: called from this thread with the share done at the
+ *            end of each stage; returning false cancels (Status::internal_error,
+ *            message "cancelled")
  * \param[out] message if given, the one-line reason of a failure (unchanged on
  *             success)
  * \return Status::ok; Status::not_computed when voronoi.status() is not ok;
@@ -69,6 +72,7 @@ reconstructSurface(const VoronoiCocone& voronoi,
                    const ReconstructionParameters& parameters,
                    std::vector<TriangleIndices>& triangles,
                    ReconstructionReport& report,
+                   const ProgressCallback& progress = nullptr,
                    std::string* message = nullptr);
 
 } // namespace cocone

@@ -44,5 +44,20 @@ toString(Status status);
  * the message "cancelled"). An empty function is never called. */
 using ProgressCallback = std::function<bool(double)>;
 
+/** \brief The part [low, high] of \a whole: a callback that reports a stage's own
+ * share s (0 to 1) to \a whole as low + (high - low) s, for computations made of
+ * several core calls.
+ * \param[in] whole the callback of the whole computation; may be empty
+ * \param[in] low the share of the whole done when the stage starts, in [0, 1]
+ * \param[in] high the share done when it ends, in [low, 1]
+ * \return the stage's callback; empty when \a whole is */
+inline ProgressCallback
+progressPart(const ProgressCallback& whole, double low, double high)
+{
+  if (!whole)
+    return nullptr;
+  return [whole, low, high](double share) { return whole(low + (high - low) * share); };
+}
+
 } // namespace cocone
 } // namespace pcl

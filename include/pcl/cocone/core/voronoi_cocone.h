@@ -193,12 +193,16 @@ public:
    * Replaces the results of any earlier compute() (also when it fails).
    * \param[in] points the samples (any coordinates, in input units; no NaN or
    *            infinity); the position of a point in this array is its SampleIndex
+   * \param[in] progress optional: called from this thread with the share done, every
+   *            65536 insertions and at the end; returning false cancels
+   *            (Status::internal_error, errorMessage() "cancelled")
    * \return Status::ok, or the reason nothing was built (see errorMessage()):
    *         Status::invalid_parameter (the cocone angle), Status::too_many_points,
    *         Status::non_finite_input, Status::too_few_points,
    *         Status::degenerate_dimension or Status::internal_error */
   Status
-  compute(const std::vector<Eigen::Vector3d>& points);
+  compute(const std::vector<Eigen::Vector3d>& points,
+          const ProgressCallback& progress = nullptr);
 
   /** \brief Wall-clock seconds of the stages of the last compute(). */
   struct Timings

@@ -139,7 +139,8 @@ BoundarySampleEstimation<PointInT, PointOutT>::estimate(PointCloudOut& output)
     sample_of[samples.cloud_index[s]] = static_cast<cocone::SampleIndex>(s);
 
   cocone::VoronoiCocone voronoi(voronoi_parameters_);
-  const cocone::Status status = voronoi.compute(samples.points);
+  const cocone::Status status =
+      voronoi.compute(samples.points, cocone::progressPart(progress_, 0, 0.9));
   warning_message_ = cocone::describeSampleProblems(
       *input_, samples, voronoi.typicalSpacing(), "their rows invalid");
   if (!warning_message_.empty())
@@ -152,6 +153,8 @@ BoundarySampleEstimation<PointInT, PointOutT>::estimate(PointCloudOut& output)
   if (cocone::detectBoundarySamples(voronoi, parameters_, is_boundary, &message) !=
       cocone::Status::ok)
     return fail(message, output);
+  if (progress_ && !progress_(1))
+    return fail("cancelled", output);
 
   for (std::size_t row = 0; row < rows; ++row) {
     const cocone::SampleIndex s = sample_of[(*indices_)[row]];

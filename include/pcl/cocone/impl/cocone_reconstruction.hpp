@@ -114,7 +114,9 @@ CoconeReconstruction<PointInT>::reconstructSelection(std::vector<pcl::Vertices>&
   const pcl::Indices& cloud_index = samples.cloud_index;
 
   cocone::VoronoiCocone voronoi(voronoi_parameters_);
-  const cocone::Status status = voronoi.compute(samples.points);
+  // The diagram takes about 60% of a run, the mesher the rest.
+  const cocone::Status status =
+      voronoi.compute(samples.points, cocone::progressPart(progress_, 0, 0.6));
   warning_message_ = cocone::describeSampleProblems(
       *input_, samples, voronoi.typicalSpacing(), "listed as unused");
   if (!warning_message_.empty())
@@ -125,8 +127,9 @@ CoconeReconstruction<PointInT>::reconstructSelection(std::vector<pcl::Vertices>&
   std::vector<cocone::TriangleIndices> triangles;
   cocone::ReconstructionReport report;
   std::string message;
-  if (cocone::reconstructSurface(voronoi, parameters_, triangles, report, &message) !=
-      cocone::Status::ok)
+  if (cocone::reconstructSurface(voronoi, parameters_, triangles, report,
+                                 cocone::progressPart(progress_, 0.6, 1),
+                                 &message) != cocone::Status::ok)
     return fail(message);
 
   // Every index handed out is a cloud index: sample s is cloud point cloud_index[s].

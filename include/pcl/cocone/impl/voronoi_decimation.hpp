@@ -79,7 +79,9 @@ VoronoiDecimation<PointT>::decimateSelection(const cocone::DecimationParameters&
     return false;
   };
   cocone::VoronoiCocone voronoi(voronoi_parameters_);
-  const cocone::Status status = voronoi.compute(samples.points);
+  // The diagram takes about half of a run, DECIMATE and the relaxation the rest.
+  const cocone::Status status =
+      voronoi.compute(samples.points, cocone::progressPart(progress_, 0, 0.5));
   warning_message_ = cocone::describeSampleProblems(
       *input_, samples, voronoi.typicalSpacing(), "never kept");
   if (!warning_message_.empty())
@@ -95,7 +97,8 @@ VoronoiDecimation<PointT>::decimateSelection(const cocone::DecimationParameters&
                                     &message) != cocone::Status::ok)
     return fail(message);
   cocone::DecimationLevels levels;
-  if (cocone::decimate(std::move(voronoi), parameters, boundary, levels, nullptr,
+  if (cocone::decimate(std::move(voronoi), parameters, boundary, levels,
+                       cocone::progressPart(progress_, 0.5, 1),
                        &message) != cocone::Status::ok)
     return fail(message);
   for (std::size_t s = 0; s < samples.cloud_index.size(); ++s)
