@@ -124,7 +124,8 @@ deserialize(const std::string& text)
   return m;
 }
 
-const std::chrono::steady_clock::time_point kProgramStart = std::chrono::steady_clock::now();
+const std::chrono::steady_clock::time_point kProgramStart =
+    std::chrono::steady_clock::now();
 
 std::string
 readFirstLine(const std::string& path)
@@ -167,7 +168,8 @@ AlgorithmMeter::AlgorithmMeter()
 double
 AlgorithmMeter::elapsed() const
 {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_)
+      .count();
 }
 
 void
@@ -239,7 +241,8 @@ runIsolated(const std::function<void(Measurement&)>& body, double timeout_second
       break;
     }
     pollfd p{fds[0], POLLIN, 0};
-    const int ready = poll(&p, 1, static_cast<int>(std::min(left * 1000.0, 60000.0)) + 1);
+    const int ready =
+        poll(&p, 1, static_cast<int>(std::min(left * 1000.0, 60000.0)) + 1);
     if (ready < 0 && errno == EINTR)
       continue;
     if (ready <= 0)
@@ -290,7 +293,8 @@ BestRun::add(const Measurement& m)
   }
   if (m.ok) {
     times_.push_back(m.seconds);
-    smallest_peak_ = smallest_peak_ < 0 ? m.peak_mb : std::min(smallest_peak_, m.peak_mb);
+    smallest_peak_ =
+        smallest_peak_ < 0 ? m.peak_mb : std::min(smallest_peak_, m.peak_mb);
   }
 }
 
@@ -326,10 +330,8 @@ takeTurns(int repeats, const std::vector<Contestant>& contestants,
 }
 
 Measurement
-bestOf(int repeats,
-       const std::function<void(int, Measurement&)>& body,
-       double timeout_seconds,
-       double budget_seconds)
+bestOf(int repeats, const std::function<void(int, Measurement&)>& body,
+       double timeout_seconds, double budget_seconds)
 {
   return takeTurns(repeats, {{body, budget_seconds}}, timeout_seconds).front();
 }
@@ -364,7 +366,8 @@ stealShare(const LoadSample& from, const LoadSample& to)
 {
   if (to.total <= from.total)
     return kNaN;
-  return static_cast<double>(to.steal - from.steal) / static_cast<double>(to.total - from.total);
+  return static_cast<double>(to.steal - from.steal) /
+         static_cast<double>(to.total - from.total);
 }
 
 double
@@ -404,16 +407,19 @@ machineFacts()
   }
   utsname u{};
   if (uname(&u) == 0)
-    facts.emplace_back("kernel", std::string(u.sysname) + " " + u.release + " " + u.machine);
+    facts.emplace_back("kernel",
+                       std::string(u.sysname) + " " + u.release + " " + u.machine);
 #if defined(__clang__)
   facts.emplace_back("compiler", std::string("clang ") + __clang_version__);
 #elif defined(__GNUC__)
   facts.emplace_back("compiler", std::string("GCC ") + __VERSION__);
 #endif
 #ifdef NDEBUG
-  facts.emplace_back("build", "optimized, NDEBUG (CMAKE_BUILD_TYPE of the build directory)");
+  facts.emplace_back("build",
+                     "optimized, NDEBUG (CMAKE_BUILD_TYPE of the build directory)");
 #else
-  facts.emplace_back("build", "assertions on (not a Release build: timings are not representative)");
+  facts.emplace_back(
+      "build", "assertions on (not a Release build: timings are not representative)");
 #endif
   facts.emplace_back("PCL", PCL_VERSION_PRETTY);
   facts.emplace_back("CGAL", CGAL_VERSION_STR);
@@ -459,8 +465,7 @@ sig(double value, int significant)
     return "0";
   const int magnitude = static_cast<int>(std::floor(std::log10(std::abs(value))));
   const int digits = std::max(0, significant - 1 - magnitude);
-  if (digits > 6)
-  {
+  if (digits > 6) {
     std::ostringstream out;
     out << std::setprecision(significant) << value;
     return out.str();
@@ -579,7 +584,8 @@ void
 progress(const std::string& message)
 {
   const double t =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - kProgramStart).count();
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - kProgramStart)
+          .count();
   std::cerr << "[" << std::fixed << std::setprecision(0) << std::setw(5) << t << " s] "
             << message << std::endl;
 }

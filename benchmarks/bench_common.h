@@ -30,18 +30,16 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 struct Measurement
 {
   bool ok = false;
-  std::string error;       ///< why the run failed (exception, signal, timeout)
-  double seconds = -1;     ///< wall time of the algorithm alone
-  double peak_mb = -1;     ///< peak resident memory above the baseline at the start
+  std::string error;   ///< why the run failed (exception, signal, timeout)
+  double seconds = -1; ///< wall time of the algorithm alone
+  double peak_mb = -1; ///< peak resident memory above the baseline at the start
   std::map<std::string, double> values;     ///< named numbers (counts, sub-timings)
   std::map<std::string, std::string> texts; ///< named strings
 
   /** \brief values[key], or NaN when absent. */
-  double
-  value(const std::string& key) const;
+  double value(const std::string& key) const;
   /** \brief texts[key], or \a fallback when absent. */
-  std::string
-  text(const std::string& key, const std::string& fallback = "") const;
+  std::string text(const std::string& key, const std::string& fallback = "") const;
   bool
   has(const std::string& key) const
   {
@@ -57,11 +55,9 @@ class AlgorithmMeter
 public:
   AlgorithmMeter();
   /** \brief Stops the clock and reads the peak; writes seconds and peak_mb. */
-  void
-  stop(Measurement& m);
+  void stop(Measurement& m);
   /** \brief Seconds since construction (the clock keeps running). */
-  double
-  elapsed() const;
+  double elapsed() const;
 
 private:
   std::chrono::steady_clock::time_point start_;
@@ -82,11 +78,9 @@ runIsolated(const std::function<void(Measurement&)>& body, double timeout_second
 class BestRun
 {
 public:
-  void
-  add(const Measurement& m);
+  void add(const Measurement& m);
   /** \brief The merged measurement ("repeats": successful runs, "worst_seconds"). */
-  Measurement
-  result() const;
+  Measurement result() const;
   /** \brief Sum of the measured times so far. */
   double
   spent() const
@@ -127,14 +121,12 @@ struct Contestant
  * failed or its measured times add up to its budget (slow peers run once or twice).
  * Results come in the contestants' order. */
 std::vector<Measurement>
-takeTurns(int repeats, const std::vector<Contestant>& contestants, double timeout_seconds);
+takeTurns(int repeats, const std::vector<Contestant>& contestants,
+          double timeout_seconds);
 
 /** \brief takeTurns with one contestant. */
-Measurement
-bestOf(int repeats,
-       const std::function<void(int, Measurement&)>& body,
-       double timeout_seconds,
-       double budget_seconds = 60);
+Measurement bestOf(int repeats, const std::function<void(int, Measurement&)>& body,
+                   double timeout_seconds, double budget_seconds = 60);
 
 // ---------------------------------------------------------------------------------
 // Machine facts and load
@@ -142,63 +134,51 @@ bestOf(int repeats,
 /** \brief A snapshot of the machine's counters: load averages and CPU time shares. */
 struct LoadSample
 {
-  std::string loadavg;           ///< /proc/loadavg's first three fields
-  unsigned long long total = 0;  ///< all jiffies of the "cpu" line
-  unsigned long long steal = 0;  ///< steal jiffies
-  unsigned long long idle = 0;   ///< idle + iowait jiffies
+  std::string loadavg;          ///< /proc/loadavg's first three fields
+  unsigned long long total = 0; ///< all jiffies of the "cpu" line
+  unsigned long long steal = 0; ///< steal jiffies
+  unsigned long long idle = 0;  ///< idle + iowait jiffies
 };
-LoadSample
-sampleLoad();
+LoadSample sampleLoad();
 
 /** \brief Share of steal time between two samples (NaN when no time passed). */
-double
-stealShare(const LoadSample& from, const LoadSample& to);
+double stealShare(const LoadSample& from, const LoadSample& to);
 /** \brief Share of busy (non-idle) time between two samples. */
-double
-busyShare(const LoadSample& from, const LoadSample& to);
+double busyShare(const LoadSample& from, const LoadSample& to);
 
 /** \brief CPU model, cores, memory, kernel, compiler, library versions. */
-std::vector<std::pair<std::string, std::string>>
-machineFacts();
+std::vector<std::pair<std::string, std::string>> machineFacts();
 
 /** \brief Current time as "YYYY-MM-DD HH:MM UTC". */
-std::string
-utcNow();
+std::string utcNow();
 
 // ---------------------------------------------------------------------------------
 // Formatting
 
 /** \brief Fixed-point number with \a digits decimals; "-" for NaN. */
-std::string
-fixed(double value, int digits);
+std::string fixed(double value, int digits);
 /** \brief Number with about \a significant significant digits; "-" for NaN. */
-std::string
-sig(double value, int significant = 3);
+std::string sig(double value, int significant = 3);
 /** \brief Integer with thousands separators ("12 345"); "-" for NaN. */
-std::string
-count(double value);
+std::string count(double value);
 /** \brief Seconds as "0.123" / "12.3" / "123"; "-" for NaN or negative. */
-std::string
-seconds(double s);
+std::string seconds(double s);
 /** \brief A percentage "12.3%"; "-" for NaN. */
-std::string
-percent(double fraction, int digits = 1);
+std::string percent(double fraction, int digits = 1);
 
 /** \brief A Markdown table built row by row. */
 class Table
 {
 public:
   explicit Table(std::vector<std::string> header);
-  void
-  add(std::vector<std::string> row);
+  void add(std::vector<std::string> row);
   bool
   empty() const
   {
     return rows_.empty();
   }
   /** \brief The table as Markdown, columns padded so that it also reads as text. */
-  std::string
-  markdown() const;
+  std::string markdown() const;
 
 private:
   std::vector<std::string> header_;
@@ -211,14 +191,10 @@ class Report
 {
 public:
   /** \brief Appends \a text (and prints it). */
-  void
-  add(const std::string& text);
-  void
-  heading(int level, const std::string& title);
-  void
-  paragraph(const std::string& text);
-  void
-  table(const Table& table);
+  void add(const std::string& text);
+  void heading(int level, const std::string& title);
+  void paragraph(const std::string& text);
+  void table(const Table& table);
   const std::string&
   text() const
   {
@@ -230,8 +206,7 @@ private:
 };
 
 /** \brief Progress line on stderr, with the time since the program started. */
-void
-progress(const std::string& message);
+void progress(const std::string& message);
 
 } // namespace bench
 } // namespace cocone

@@ -28,7 +28,8 @@ table1(const std::string& name, double points, double triangles, double seconds)
 }
 
 PaperDecimationRow
-table2(const std::string& name, double before, double a03, double a04, double s03, double s04)
+table2(const std::string& name, double before, double a03, double a04, double s03,
+       double s04)
 {
   return {name, before, a03, a04, s03, s04};
 }
@@ -43,15 +44,15 @@ roundedToFloat(const Eigen::Vector3d& p)
 /** Points spread over a triangle mesh by area (deterministic): \a n in total. */
 std::vector<Eigen::Vector3d>
 spreadOverMesh(const std::vector<Eigen::Vector3d>& vertices,
-               const std::vector<TriangleIndices>& triangles,
-               std::size_t n)
+               const std::vector<TriangleIndices>& triangles, std::size_t n)
 {
   std::vector<double> cumulative(triangles.size() + 1, 0.0);
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     const TriangleIndices& tri = triangles[t];
-    cumulative[t + 1] = cumulative[t] + 0.5 * (vertices[tri[1]] - vertices[tri[0]])
-                                                  .cross(vertices[tri[2]] - vertices[tri[0]])
-                                                  .norm();
+    cumulative[t + 1] =
+        cumulative[t] + 0.5 * (vertices[tri[1]] - vertices[tri[0]])
+                                  .cross(vertices[tri[2]] - vertices[tri[0]])
+                                  .norm();
   }
   std::vector<Eigen::Vector3d> out;
   if (cumulative.back() <= 0)
@@ -63,8 +64,9 @@ spreadOverMesh(const std::vector<Eigen::Vector3d>& vertices,
     const double at = uniform(random) * cumulative.back();
     const std::size_t t = std::min<std::size_t>(
         triangles.size() - 1,
-        static_cast<std::size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), at) -
-                                 cumulative.begin()) -
+        static_cast<std::size_t>(
+            std::upper_bound(cumulative.begin(), cumulative.end(), at) -
+            cumulative.begin()) -
             1);
     double u = uniform(random), v = uniform(random);
     if (u + v > 1) {
@@ -104,8 +106,8 @@ std::vector<FileSpec>
 dataFiles()
 {
   std::vector<FileSpec> files;
-  const auto add = [&](const std::string& name, const std::string& file, const std::string& kind,
-                       const std::string& note) {
+  const auto add = [&](const std::string& name, const std::string& file,
+                       const std::string& kind, const std::string& note) {
     files.push_back({name, file, kind, note, std::nullopt, std::nullopt, -1, -1, -1});
     return &files.back();
   };
@@ -121,39 +123,44 @@ dataFiles()
     s->boundary_loops = loops;
     return s;
   };
-  open(add("cactus", "cactus_3318.pts", "paper data",
-           "Hoppe's CACTUS: 3318 lines, 3280 distinct points (the paper's 3280); open at "
-           "its base: the 20 samples at the lowest z (0.1) form a ring with no sample "
-           "inside, and the paper's 6538 triangles are 2 x 3280 - 2 - 20, a genus-0 "
-           "surface with that one 20-edge loop (its 'true boundary')"),
-       0, 1)
+  open(
+      add("cactus", "cactus_3318.pts", "paper data",
+          "Hoppe's CACTUS: 3318 lines, 3280 distinct points (the paper's 3280); open at "
+          "its base: the 20 samples at the lowest z (0.1) form a ring with no sample "
+          "inside, and the paper's 6538 triangles are 2 x 3280 - 2 - 20, a genus-0 "
+          "surface with that one 20-edge loop (its 'true boundary')"),
+      0, 1)
       ->paper = table1("CACTUS", 3280, 6538, 50);
-  closed(add("3holes", "3holes_4000_bluenoise.xyz", "paper data",
-             "4000 blue-noise samples of a genus-3 slab (GCNO); same count as the paper's "
-             "3HOLES, model not verified to be the same"),
-         3)
+  closed(
+      add("3holes", "3holes_4000_bluenoise.xyz", "paper data",
+          "4000 blue-noise samples of a genus-3 slab (GCNO); same count as the paper's "
+          "3HOLES, model not verified to be the same"),
+      3)
       ->paper = table1("3HOLES", 4000, 8008, 38);
-  closed(add("knot-1281", "knot_1281.pts", "paper data",
-             "Power Crust's knot: 1281 points, much sparser than the paper's 10000-point KNOT "
-             "(see knot-10k for a KNOT-sized sample); its first point (0,0,0) is probably "
-             "spurious"),
-         1)
+  closed(
+      add("knot-1281", "knot_1281.pts", "paper data",
+          "Power Crust's knot: 1281 points, much sparser than the paper's 10000-point KNOT "
+          "(see knot-10k for a KNOT-sized sample); its first point (0,0,0) is probably "
+          "spurious"),
+      1)
       ->paper = table1("KNOT", 10000, 20000, 96);
   {
-    FileSpec* s = add("mannequin", "mannequin_11703.off", "paper data",
-                      "vertices of an 11703-vertex mannequin mesh; the paper's MANNEQUIN has "
-                      "12772 points");
+    FileSpec* s =
+        add("mannequin", "mannequin_11703.off", "paper data",
+            "vertices of an 11703-vertex mannequin mesh; the paper's MANNEQUIN has "
+            "12772 points");
     s->paper = table1("MANNEQUIN", 12772, 25427, 91);
     s->paper_decimation = table2("MANNEQUIN", 12772, 5616, 4408, 97, 108);
   }
   {
-    FileSpec* s = add("foot", "foot_10010.off", "paper data",
-                      "vertices of a 10010-vertex foot mesh; the paper's FOOT has 20021 "
-                      "points. The mesh closes the cut at the ankle with a cap of long "
-                      "triangles (edges up to 32 median edges) and no vertex inside: as a "
-                      "sample the foot is open there, with one loop (so is the paper's "
-                      "FOOT: 40002 triangles, where a closed genus-0 surface through "
-                      "20021 points has 40038); distances are to the mesh, cap included");
+    FileSpec* s =
+        add("foot", "foot_10010.off", "paper data",
+            "vertices of a 10010-vertex foot mesh; the paper's FOOT has 20021 "
+            "points. The mesh closes the cut at the ankle with a cap of long "
+            "triangles (edges up to 32 median edges) and no vertex inside: as a "
+            "sample the foot is open there, with one loop (so is the paper's "
+            "FOOT: 40002 triangles, where a closed genus-0 surface through "
+            "20021 points has 40038); distances are to the mesh, cap included");
     open(s, 0, 1);
     s->paper = table1("FOOT", 20021, 40002, 149);
     s->paper_decimation = table2("FOOT", 20021, 3359, 2247, 277, 268);
@@ -169,7 +176,8 @@ dataFiles()
       "Hoppe's fandisk (sharp creases and corners); not in the paper's tables");
   add("bun000-scan", "bun000_rawscan_40256.ply", "real scan",
       "one raw range scan of the bunny: open, noisy, holes");
-  add("milk", "pcl_milk_13704.pcd", "real scan", "partial view of a milk carton: open, sharp edges");
+  add("milk", "pcl_milk_13704.pcd", "real scan",
+      "partial view of a milk carton: open, sharp edges");
   add("lidar-terrain", "pcl_lidar_terrain_samp11-utm_38010.pcd", "real scan",
       "airborne LiDAR (UTM coordinates, 213 duplicates): height field with buildings");
   add("gargoyle", "gargoyle_95435_normals.ply", "real scan",
@@ -214,7 +222,8 @@ generatedName(const std::string& shape, std::size_t n)
 }
 
 bool
-loadFileInput(const std::string& directory, const FileSpec& spec, Input& input, std::string& why)
+loadFileInput(const std::string& directory, const FileSpec& spec, Input& input,
+              std::string& why)
 {
   const std::filesystem::path path = std::filesystem::path(directory) / spec.file;
   if (!std::filesystem::exists(path)) {
@@ -275,7 +284,8 @@ generatedInput(const std::string& shape_name, ShapeGenerator generate, std::size
   auto shape = std::make_shared<test::SampledShape>(generate(n, 1));
   Input input;
   input.name = generatedName(shape_name, n);
-  input.source = "blue noise (test/support/shapes.h, seed 1), normal jitter 1e-5 x diagonal";
+  input.source =
+      "blue noise (test/support/shapes.h, seed 1), normal jitter 1e-5 x diagonal";
   input.kind = "generated";
   // The test shapes keep their jitter tiny (it would bias the heights the tests compare
   // with the feature size), so at 100k points the float rounding of the cloud decides
@@ -319,9 +329,12 @@ jitteredTorusInput(std::size_t n)
   };
 
   // Hexagonal packing: rows around the tube, each row a circle around the z axis.
-  const double h = std::sqrt(2.0 * shape->area / (std::sqrt(3.0) * static_cast<double>(n)));
-  const auto rows = static_cast<std::size_t>(std::round(2 * kPi * small / (h * std::sqrt(3.0) / 2)));
-  const double diagonal = std::sqrt(2 * std::pow(2 * (big + small), 2) + std::pow(2 * small, 2));
+  const double h =
+      std::sqrt(2.0 * shape->area / (std::sqrt(3.0) * static_cast<double>(n)));
+  const auto rows =
+      static_cast<std::size_t>(std::round(2 * kPi * small / (h * std::sqrt(3.0) / 2)));
+  const double diagonal =
+      std::sqrt(2 * std::pow(2 * (big + small), 2) + std::pow(2 * small, 2));
   const double jitter = 1e-5 * diagonal;
   std::mt19937_64 random(20010521);
   std::uniform_real_distribution<double> uniform(-jitter, jitter);
@@ -329,21 +342,27 @@ jitteredTorusInput(std::size_t n)
   for (std::size_t j = 0; j < rows; ++j) {
     const double v = 2 * kPi * static_cast<double>(j) / static_cast<double>(rows);
     const double ring = big + small * std::cos(v);
-    const auto count = static_cast<std::size_t>(std::max(3.0, std::round(2 * kPi * ring / h)));
+    const auto count =
+        static_cast<std::size_t>(std::max(3.0, std::round(2 * kPi * ring / h)));
     const double shift = (j % 2) ? 0.5 : 0.0;
     for (std::size_t i = 0; i < count; ++i) {
-      const double u = 2 * kPi * (static_cast<double>(i) + shift) / static_cast<double>(count);
-      const Eigen::Vector3d p(ring * std::cos(u), ring * std::sin(u), small * std::sin(v));
-      input.points.push_back(
-          roundedToFloat(p + Eigen::Vector3d(uniform(random), uniform(random), uniform(random))));
+      const double u =
+          2 * kPi * (static_cast<double>(i) + shift) / static_cast<double>(count);
+      const Eigen::Vector3d p(ring * std::cos(u), ring * std::sin(u),
+                              small * std::sin(v));
+      input.points.push_back(roundedToFloat(
+          p + Eigen::Vector3d(uniform(random), uniform(random), uniform(random))));
     }
   }
   shape->points = input.points;
   std::ostringstream name;
-  name << "torus-" << std::llround(static_cast<double>(input.points.size()) / 1e6) << "M";
+  name << "torus-" << std::llround(static_cast<double>(input.points.size()) / 1e6)
+       << "M";
   input.name = name.str();
-  input.source = "staggered grid on the torus R=1, r=0.35, " + std::to_string(input.points.size()) +
-                 " points, uniform jitter 1e-5 x diagonal (not blue noise: too slow at 1M)";
+  input.source =
+      "staggered grid on the torus R=1, r=0.35, " +
+      std::to_string(input.points.size()) +
+      " points, uniform jitter 1e-5 x diagonal (not blue noise: too slow at 1M)";
   input.kind = "generated";
   input.closed = 1;
   input.genus = 1;
@@ -363,8 +382,8 @@ finishInput(Input& input, std::size_t probes)
     for (const Eigen::Vector3d& p : input.points)
       sorted.push_back({p.x(), p.y(), p.z()});
     std::sort(sorted.begin(), sorted.end());
-    input.unique =
-        static_cast<std::size_t>(std::unique(sorted.begin(), sorted.end()) - sorted.begin());
+    input.unique = static_cast<std::size_t>(std::unique(sorted.begin(), sorted.end()) -
+                                            sorted.begin());
   }
   Eigen::Vector3d lo = input.points.front(), hi = lo;
   for (const Eigen::Vector3d& p : input.points) {
@@ -408,7 +427,8 @@ finishInput(Input& input, std::size_t probes)
     }
   }
   else if (!input.mesh_triangles.empty())
-    input.reference_probes = spreadOverMesh(input.mesh_vertices, input.mesh_triangles, probes);
+    input.reference_probes =
+        spreadOverMesh(input.mesh_vertices, input.mesh_triangles, probes);
 }
 
 } // namespace bench

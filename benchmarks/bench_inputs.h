@@ -60,9 +60,9 @@ struct Input
    * pcl::PointXYZ cloud holds, so every method sees the same coordinates). */
   std::vector<Eigen::Vector3d> points;
   pcl::PointCloud<pcl::PointXYZ>::Ptr cloud; ///< the same points as a PCL cloud
-  std::size_t unique = 0;  ///< distinct points
-  double spacing = 0;      ///< mean distance to the nearest other sample
-  double diagonal = 0;     ///< bounding-box diagonal
+  std::size_t unique = 0;                    ///< distinct points
+  double spacing = 0;  ///< mean distance to the nearest other sample
+  double diagonal = 0; ///< bounding-box diagonal
 
   /** Analytic reference (generated shapes). */
   std::shared_ptr<const test::SampledShape> shape;
@@ -74,7 +74,7 @@ struct Input
 
   /** What the reference surface is, where known: closed (1), open (0), unknown (-1). */
   int closed = -1;
-  long genus = -1;         ///< -1 when unknown
+  long genus = -1;          ///< -1 when unknown
   long boundary_loops = -1; ///< -1 when unknown
 
   std::optional<PaperReconstructionRow> paper;
@@ -111,13 +111,12 @@ struct FileSpec
 };
 
 /** \brief The data files of the benchmark (paper sets first, then real scans). */
-std::vector<FileSpec>
-dataFiles();
+std::vector<FileSpec> dataFiles();
 
 /** \brief Reads \a spec from \a directory. False (with \a why) when the file is
  * missing or unreadable. */
-bool
-loadFileInput(const std::string& directory, const FileSpec& spec, Input& input, std::string& why);
+bool loadFileInput(const std::string& directory, const FileSpec& spec, Input& input,
+                   std::string& why);
 
 /** \brief An analytic shape of test/support/shapes.h sampled as blue noise. */
 using ShapeGenerator = test::SampledShape (*)(std::size_t, std::uint32_t);
@@ -128,8 +127,7 @@ generatedInput(const std::string& shape_name, ShapeGenerator generate, std::size
  * grid of about \a n points, even by area, with a uniform random jitter of 1e-5 of the
  * bounding-box diagonal in each coordinate (no four points co-spherical). Fast at any
  * size, unlike the blue-noise generator. */
-Input
-jitteredTorusInput(std::size_t n);
+Input jitteredTorusInput(std::size_t n);
 
 /** \brief The generated shapes: name and generator. */
 struct GeneratedShape
@@ -137,22 +135,18 @@ struct GeneratedShape
   std::string name;
   ShapeGenerator generate;
 };
-std::vector<GeneratedShape>
-generatedShapes();
+std::vector<GeneratedShape> generatedShapes();
 
 /** \brief The sizes the generated shapes are sampled at: 10k and 100k points, and 1M
  * unless \a quick. */
-std::vector<std::size_t>
-generatedSizes(bool quick);
+std::vector<std::size_t> generatedSizes(bool quick);
 
 /** \brief The name of a generated input: "sphere-10k", "sphere-1M". */
-std::string
-generatedName(const std::string& shape, std::size_t n);
+std::string generatedName(const std::string& shape, std::size_t n);
 
 /** \brief Computes the derived fields of an input whose points are set: cloud, unique
  * count, spacing, diagonal, reference probes (about \a probes points). */
-void
-finishInput(Input& input, std::size_t probes);
+void finishInput(Input& input, std::size_t probes);
 
 /** A point set as a pcl::PointXYZ cloud (the tests' helper). */
 using test::toCloud;

@@ -23,7 +23,8 @@ namespace {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
 using Triangle = Kernel::Triangle_3;
-using Primitive = CGAL::AABB_triangle_primitive<Kernel, std::vector<Triangle>::const_iterator>;
+using Primitive =
+    CGAL::AABB_triangle_primitive<Kernel, std::vector<Triangle>::const_iterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 
 } // namespace
@@ -36,7 +37,7 @@ struct TriangleDistance::Impl
 
 TriangleDistance::TriangleDistance(const std::vector<Eigen::Vector3d>& vertices,
                                    const std::vector<TriangleIndices>& triangles)
-: impl_(std::make_unique<Impl>())
+  : impl_(std::make_unique<Impl>())
 {
   impl_->triangles.reserve(triangles.size());
   for (const TriangleIndices& t : triangles) {
@@ -70,15 +71,15 @@ TriangleDistance::operator()(const Eigen::Vector3d& q) const
 }
 
 SurfaceDistance
-surfaceDistance(const Input& input,
-                const std::vector<Eigen::Vector3d>& vertices,
+surfaceDistance(const Input& input, const std::vector<Eigen::Vector3d>& vertices,
                 const std::vector<TriangleIndices>& triangles)
 {
   SurfaceDistance d;
   if (!input.hasReference() || triangles.empty()) {
-    d.to_reference_max = d.to_reference_mean = d.from_reference_max = d.from_reference_mean =
-        triangles.empty() && input.hasReference() ? std::numeric_limits<double>::infinity()
-                                                  : kNaN;
+    d.to_reference_max = d.to_reference_mean = d.from_reference_max =
+        d.from_reference_mean = triangles.empty() && input.hasReference()
+                                    ? std::numeric_limits<double>::infinity()
+                                    : kNaN;
     return d;
   }
   const double unit = input.spacing > 0 ? input.spacing : 1.0;
@@ -125,7 +126,8 @@ surfaceDistance(const Input& input,
     }
   }
   d.to_reference_max = largest / unit;
-  d.to_reference_mean = probes.empty() ? kNaN : sum / static_cast<double>(probes.size()) / unit;
+  d.to_reference_mean =
+      probes.empty() ? kNaN : sum / static_cast<double>(probes.size()) / unit;
 
   // Reference -> mesh.
   const TriangleDistance mesh(vertices, triangles);
@@ -137,18 +139,17 @@ surfaceDistance(const Input& input,
     largest = std::max(largest, e);
   }
   d.from_reference_max = largest / unit;
-  d.from_reference_mean = input.reference_probes.empty()
-                              ? kNaN
-                              : sum / static_cast<double>(input.reference_probes.size()) / unit;
+  d.from_reference_mean =
+      input.reference_probes.empty()
+          ? kNaN
+          : sum / static_cast<double>(input.reference_probes.size()) / unit;
   return d;
 }
 
 void
-recordMeshQuality(const Input& input,
-                  const std::vector<Eigen::Vector3d>& vertices,
+recordMeshQuality(const Input& input, const std::vector<Eigen::Vector3d>& vertices,
                   const std::vector<TriangleIndices>& triangles,
-                  bool vertices_are_samples,
-                  Measurement& m)
+                  bool vertices_are_samples, Measurement& m)
 {
   const MeshTopology topology = analyzeTriangleMesh(triangles);
   m.values["triangles"] = static_cast<double>(triangles.size());

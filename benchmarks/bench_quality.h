@@ -2,8 +2,9 @@
 /**
  * \file
  * Quality of a reconstructed triangle mesh: topology (pcl/cocone/core/mesh_topology.h),
- * self-intersections (pcl/cocone/core/mesh_geometry.h) and the two-sided distance to the
- * input's reference surface (analytic, or the file's mesh through a CGAL AABB tree).
+ * self-intersections (pcl/cocone/core/mesh_geometry.h) and the two-sided distance to
+ * the input's reference surface (analytic, or the file's mesh through a CGAL AABB
+ * tree).
  */
 #pragma once
 
@@ -34,10 +35,8 @@ public:
                    const std::vector<TriangleIndices>& triangles);
   ~TriangleDistance();
   /** \brief False when the mesh has no triangle with area. */
-  bool
-  valid() const;
-  double
-  operator()(const Eigen::Vector3d& query) const;
+  bool valid() const;
+  double operator()(const Eigen::Vector3d& query) const;
 
 private:
   struct Impl;
@@ -49,7 +48,8 @@ private:
  * reference. */
 struct SurfaceDistance
 {
-  double to_reference_max = 0;   ///< mesh -> reference (vertices + one point per triangle)
+  double to_reference_max =
+      0; ///< mesh -> reference (vertices + one point per triangle)
   double to_reference_mean = 0;
   double from_reference_max = 0; ///< reference probes -> mesh
   double from_reference_mean = 0;
@@ -65,8 +65,7 @@ struct SurfaceDistance
   }
 };
 SurfaceDistance
-surfaceDistance(const Input& input,
-                const std::vector<Eigen::Vector3d>& vertices,
+surfaceDistance(const Input& input, const std::vector<Eigen::Vector3d>& vertices,
                 const std::vector<TriangleIndices>& triangles);
 
 /** \brief Records the quality of a mesh in \a m: triangles, used (share of the distinct
@@ -74,12 +73,9 @@ surfaceDistance(const Input& input,
  * nm_edges, nm_vertices, boundary_edges, loops, closed, chi, genus, oriented,
  * components, self_intersections (NaN when skipped), d_hausdorff and d_mean (two-sided,
  * in spacings; NaN without reference) and their one-sided parts. */
-void
-recordMeshQuality(const Input& input,
-                  const std::vector<Eigen::Vector3d>& vertices,
-                  const std::vector<TriangleIndices>& triangles,
-                  bool vertices_are_samples,
-                  Measurement& m);
+void recordMeshQuality(const Input& input, const std::vector<Eigen::Vector3d>& vertices,
+                       const std::vector<TriangleIndices>& triangles,
+                       bool vertices_are_samples, Measurement& m);
 
 } // namespace bench
 } // namespace cocone

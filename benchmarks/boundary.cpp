@@ -31,13 +31,14 @@ harmonicMean(double precision, double recall)
 }
 
 /** Two scores against the true rim, spacing = sqrt(area / n) as in the tests.
- * Within 3 spacings: precision = flags within 3 spacings of the rim, recall = rim points
- * with a flag within 3 spacings; any band up to 3 spacings wide scores 1.
- * Rim row: the samples BOUNDARY is defined to find, the outermost row (the rim vertices
- * of a correct reconstruction), taken as the nearest sample of each dense rim point;
+ * Within 3 spacings: precision = flags within 3 spacings of the rim, recall = rim
+ * points with a flag within 3 spacings; any band up to 3 spacings wide scores 1. Rim
+ * row: the samples BOUNDARY is defined to find, the outermost row (the rim vertices of
+ * a correct reconstruction), taken as the nearest sample of each dense rim point;
  * precision = flags in that row, recall = row samples flagged. */
 void
-recordRimMetrics(const Input& input, const std::vector<std::uint8_t>& flags, Measurement& m)
+recordRimMetrics(const Input& input, const std::vector<std::uint8_t>& flags,
+                 Measurement& m)
 {
   std::vector<Eigen::Vector3d> flagged;
   for (std::size_t i = 0; i < flags.size() && i < input.points.size(); ++i)
@@ -51,7 +52,8 @@ recordRimMetrics(const Input& input, const std::vector<std::uint8_t>& flags, Mea
   std::size_t good = 0;
   for (const Eigen::Vector3d& p : flagged)
     good += input.shape->distance_to_rim(p) <= near;
-  const double precision = flagged.empty() ? kNaN : static_cast<double>(good) / flagged.size();
+  const double precision =
+      flagged.empty() ? kNaN : static_cast<double>(good) / flagged.size();
 
   const auto toQuery = [](const Eigen::Vector3d& r) {
     return pcl::PointXYZ(static_cast<float>(r.x()), static_cast<float>(r.y()),
@@ -64,7 +66,8 @@ recordRimMetrics(const Input& input, const std::vector<std::uint8_t>& flags, Mea
     pcl::KdTreeFLANN<pcl::PointXYZ> tree;
     tree.setInputCloud(toCloud(flagged));
     for (const Eigen::Vector3d& r : input.shape->rim)
-      if (tree.nearestKSearch(toQuery(r), 1, index, squared) > 0 && std::sqrt(squared[0]) <= near)
+      if (tree.nearestKSearch(toQuery(r), 1, index, squared) > 0 &&
+          std::sqrt(squared[0]) <= near)
         ++covered;
   }
   const double recall = static_cast<double>(covered) / input.shape->rim.size();
@@ -93,7 +96,8 @@ recordRimMetrics(const Input& input, const std::vector<std::uint8_t>& flags, Mea
 
 /** Copies the flags of a boundary cloud and scores them. */
 void
-recordFlags(const Input& input, const pcl::PointCloud<pcl::Boundary>& output, Measurement& m)
+recordFlags(const Input& input, const pcl::PointCloud<pcl::Boundary>& output,
+            Measurement& m)
 {
   std::vector<std::uint8_t> flags(output.size());
   for (std::size_t i = 0; i < output.size(); ++i)
@@ -128,7 +132,8 @@ runOurs(const Input& input, const OurSetting& setting, bool quality, Measurement
   estimation.compute(output);
   meter.stop(m);
   if (output.size() != input.size()) {
-    m.error = estimation.getErrorMessage().empty() ? "no output" : estimation.getErrorMessage();
+    m.error = estimation.getErrorMessage().empty() ? "no output"
+                                                   : estimation.getErrorMessage();
     return;
   }
   if (!quality)
@@ -258,8 +263,8 @@ runBoundarySection(Context& context)
       "includes "
       "the normals. On the closed 1M torus no sample should be flagged: it measures "
       "the time only. On the 1M open surfaces only the default setting runs.");
-  Table table({"input", "method", "s", "peak MB", "flagged", "P3", "R3", "F1 3sp", "P row",
-               "R row", "F1 row"});
+  Table table({"input", "method", "s", "peak MB", "flagged", "P3", "R3", "F1 3sp",
+               "P row", "R row", "F1 row"});
   std::vector<std::string> f1_notes, row_notes;
   bool f1_met = true, row_met = true, f1_evaluated = false;
   std::string large_note;
@@ -276,11 +281,12 @@ runBoundarySection(Context& context)
       std::string s = seconds(m.seconds);
       if (m.has("t_normals"))
         s += " (normals " + seconds(m.value("t_normals")) + ")";
-      table.add({c.input->name, r.method, s, sig(m.peak_mb, 3),
-                 count(m.value("flagged")) + " (" + percent(m.value("flagged_share")) + ")",
-                 fixed(m.value("precision"), 3), fixed(m.value("recall"), 3),
-                 fixed(m.value("f1"), 3), fixed(m.value("row_precision"), 3),
-                 fixed(m.value("row_recall"), 3), fixed(m.value("row_f1"), 3)});
+      table.add(
+          {c.input->name, r.method, s, sig(m.peak_mb, 3),
+           count(m.value("flagged")) + " (" + percent(m.value("flagged_share")) + ")",
+           fixed(m.value("precision"), 3), fixed(m.value("recall"), 3),
+           fixed(m.value("f1"), 3), fixed(m.value("row_precision"), 3),
+           fixed(m.value("row_recall"), 3), fixed(m.value("row_f1"), 3)});
       const bool ours = r.method.rfind("BoundarySample", 0) == 0;
       const double f1 = m.value("f1");
       const double row_f1 = m.value("row_f1");
@@ -296,13 +302,15 @@ runBoundarySection(Context& context)
       }
     }
     if (!c.peers)
-      table.add({c.input->name, "(peer)",
-                 context.options.no_peers ? "not run (--ours-only)" : "not run (--quick)"});
+      table.add(
+          {c.input->name, "(peer)",
+           context.options.no_peers ? "not run (--ours-only)" : "not run (--quick)"});
     if (c.input->shape && !c.input->shape->rim.empty() && c.peers) {
       f1_evaluated = true;
       if (!(best_ours > best_pcl))
         f1_met = false;
-      f1_notes.push_back(c.input->name + " " + fixed(best_ours, 3) + " vs " + fixed(best_pcl, 3));
+      f1_notes.push_back(c.input->name + " " + fixed(best_ours, 3) + " vs " +
+                         fixed(best_pcl, 3));
       if (!(best_ours_row > best_pcl_row))
         row_met = false;
       row_notes.push_back(c.input->name + " " + fixed(best_ours_row, 3) + " vs " +

@@ -168,9 +168,10 @@ recordReconstructionError(const Input& input, const Points& kept, Measurement& m
                            static_cast<std::uint32_t>(p.vertices[2])});
   const MeshTopology topology = analyzeTriangleMesh(triangles);
   m.values["triangles"] = static_cast<double>(triangles.size());
-  m.values["loops"] = topology.non_manifold_edges == 0 && topology.non_manifold_vertices == 0
-                          ? static_cast<double>(topology.boundary_loops.size())
-                          : kNaN;
+  m.values["loops"] =
+      topology.non_manifold_edges == 0 && topology.non_manifold_vertices == 0
+          ? static_cast<double>(topology.boundary_loops.size())
+          : kNaN;
   m.values["genus"] = static_cast<double>(topology.genus());
   const SurfaceDistance d = surfaceDistance(input, kept, triangles);
   m.values["d_hausdorff"] = d.hausdorff();
@@ -194,7 +195,8 @@ runOurs(const Input& input, double rho, bool quality, Measurement& m,
   decimation.filter(kept);
   meter.stop(m);
   if (kept.empty()) {
-    m.error = decimation.getErrorMessage().empty() ? "nothing kept" : decimation.getErrorMessage();
+    m.error = decimation.getErrorMessage().empty() ? "nothing kept"
+                                                   : decimation.getErrorMessage();
     return;
   }
   m.values["kept"] = static_cast<double>(kept.size());
@@ -211,7 +213,8 @@ runOurs(const Input& input, double rho, bool quality, Measurement& m,
  * records "p1" (and "p2" for hierarchy_simplify: the cluster size cap) and the text
  * "parameter". */
 void
-tunePeer(const Input& input, const std::string& peer, std::size_t target, Measurement& m)
+tunePeer(const Input& input, const std::string& peer, std::size_t target,
+         Measurement& m)
 {
   const double n = static_cast<double>(input.size());
   const double scale = input.spacing * std::sqrt(n / static_cast<double>(target));
@@ -223,14 +226,16 @@ tunePeer(const Input& input, const std::string& peer, std::size_t target, Measur
     parameter << "leaf " << sig(leaf / input.spacing, 3) << " sp";
   }
   else if (peer == "UniformSampling") {
-    const double radius = bisect([&](double p) { return uniformSampling(input, p).size(); },
-                                 0.5 * scale, 2 * scale, target);
+    const double radius =
+        bisect([&](double p) { return uniformSampling(input, p).size(); }, 0.5 * scale,
+               2 * scale, target);
     m.values["p1"] = radius;
     parameter << "radius " << sig(radius / input.spacing, 3) << " sp";
   }
   else if (peer == "CGAL grid_simplify") {
-    const double epsilon = bisect([&](double p) { return gridSimplify(input, p).size(); },
-                                  0.5 * scale, 2 * scale, target);
+    const double epsilon =
+        bisect([&](double p) { return gridSimplify(input, p).size(); }, 0.5 * scale,
+               2 * scale, target);
     m.values["p1"] = epsilon;
     parameter << "epsilon " << sig(epsilon / input.spacing, 3) << " sp";
   }
@@ -263,7 +268,8 @@ tunePeer(const Input& input, const std::string& peer, std::size_t target, Measur
 /** Runs a peer at its tuned parameters (a fresh child: the bisection's memory does not
  * hide this run's peak), then measures the reconstruction of what it kept. */
 void
-runPeer(const Input& input, const std::string& peer, const Measurement& tuned, Measurement& m)
+runPeer(const Input& input, const std::string& peer, const Measurement& tuned,
+        Measurement& m)
 {
   const double p1 = tuned.value("p1");
   Points kept;
@@ -293,9 +299,8 @@ runAllPoints(const Input& input, Measurement& m)
 const std::vector<std::string>&
 peers()
 {
-  static const std::vector<std::string> names = {"VoxelGrid", "UniformSampling",
-                                                 "CGAL grid_simplify",
-                                                 "CGAL hierarchy_simplify"};
+  static const std::vector<std::string> names = {
+      "VoxelGrid", "UniformSampling", "CGAL grid_simplify", "CGAL hierarchy_simplify"};
   return names;
 }
 
@@ -314,9 +319,11 @@ runDecimationSection(Context& context)
     if (it == timed.end()) {
       progress("decimation: " + input.name + " at rho " + fixed(rho, 2));
       it = timed
-               .emplace(key, bestOf(Context::repeatsFor(input.size()),
-                                    [&](int, Measurement& m) { runOurs(input, rho, false, m); },
-                                    timeout))
+               .emplace(key,
+                        bestOf(
+                            Context::repeatsFor(input.size()),
+                            [&](int, Measurement& m) { runOurs(input, rho, false, m); },
+                            timeout))
                .first;
     }
     return it->second;
@@ -330,9 +337,9 @@ runDecimationSection(Context& context)
                    "all cores). Times are of the filter alone.");
 
   // --- beside the paper's Table 2 -------------------------------------------------
-  Table paper({"paper model", "paper before", "paper 0.3", "paper 0.4", "paper s 0.3/0.4",
-               "our input", "before", "after 0.3", "after 0.4", "s 0.3", "s 0.4",
-               "peak MB 0.3", "note"});
+  Table paper({"paper model", "paper before", "paper 0.3", "paper 0.4",
+               "paper s 0.3/0.4", "our input", "before", "after 0.3", "after 0.4",
+               "s 0.3", "s 0.4", "peak MB 0.3", "note"});
   for (const FileSpec& spec : dataFiles()) {
     if (!spec.paper_decimation || !context.selected(spec.name))
       continue;
@@ -343,22 +350,26 @@ runDecimationSection(Context& context)
     const PaperDecimationRow& p = *spec.paper_decimation;
     const Measurement& a = timeOurs(*input, 0.3);
     const Measurement& b = timeOurs(*input, 0.4);
-    paper.add({p.name, count(p.before), count(p.after_03), count(p.after_04),
-               count(p.seconds_03) + " / " + count(p.seconds_04), input->name,
-               count(static_cast<double>(input->unique)),
-               a.ok ? count(a.value("kept")) + " (" +
-                          percent(a.value("kept") / static_cast<double>(input->unique), 0) + ")"
-                    : "failed: " + a.error,
-               b.ok ? count(b.value("kept")) + " (" +
-                          percent(b.value("kept") / static_cast<double>(input->unique), 0) + ")"
-                    : "failed: " + b.error,
-               seconds(a.seconds), seconds(b.seconds), sig(a.peak_mb, 3), input->note});
+    paper.add(
+        {p.name, count(p.before), count(p.after_03), count(p.after_04),
+         count(p.seconds_03) + " / " + count(p.seconds_04), input->name,
+         count(static_cast<double>(input->unique)),
+         a.ok ? count(a.value("kept")) + " (" +
+                    percent(a.value("kept") / static_cast<double>(input->unique), 0) +
+                    ")"
+              : "failed: " + a.error,
+         b.ok ? count(b.value("kept")) + " (" +
+                    percent(b.value("kept") / static_cast<double>(input->unique), 0) +
+                    ")"
+              : "failed: " + b.error,
+         seconds(a.seconds), seconds(b.seconds), sig(a.peak_mb, 3), input->note});
   }
   if (!paper.empty()) {
     report.heading(3, "Beside the paper's Table 2");
-    report.paragraph("The percentages are the share of the distinct input points kept. The "
-                     "paper's inputs were denser for MANNEQUIN, FOOT and ROCKER (see notes): "
-                     "denser inputs lose a larger share.");
+    report.paragraph(
+        "The percentages are the share of the distinct input points kept. The "
+        "paper's inputs were denser for MANNEQUIN, FOOT and ROCKER (see notes): "
+        "denser inputs lose a larger share.");
     report.table(paper);
   }
 
@@ -371,17 +382,19 @@ runDecimationSection(Context& context)
       context.noteInput(*bunny);
       for (const double rho : {0.25, 0.3, 0.35, 0.4}) {
         const Measurement& m = timeOurs(*bunny, rho);
-        timing.add({bunny->name, count(static_cast<double>(bunny->size())), fixed(rho, 2),
-                    m.ok ? count(m.value("kept")) : "failed: " + m.error, seconds(m.seconds),
-                    sig(m.peak_mb, 3), count(m.value("repeats"))});
+        timing.add({bunny->name, count(static_cast<double>(bunny->size())),
+                    fixed(rho, 2), m.ok ? count(m.value("kept")) : "failed: " + m.error,
+                    seconds(m.seconds), sig(m.peak_mb, 3), count(m.value("repeats"))});
         if (m.ok) {
-          bunny_worst = std::isnan(bunny_worst) ? m.seconds : std::max(bunny_worst, m.seconds);
+          bunny_worst =
+              std::isnan(bunny_worst) ? m.seconds : std::max(bunny_worst, m.seconds);
           bunny_note += (bunny_note.empty() ? "" : ", ") + fixed(rho, 2) + ": " +
                         seconds(m.seconds) + " s";
         }
       }
       if (!std::isnan(bunny_worst))
-        context.setTarget("bunny decimation time", "< 2 s at every rho from 0.25 to 0.4",
+        context.setTarget("bunny decimation time",
+                          "< 2 s at every rho from 0.25 to 0.4",
                           bunny_worst < 2 ? 1 : 0, bunny_note);
     }
   if (!context.options.quick && context.selected("torus-1M")) {
@@ -389,12 +402,13 @@ runDecimationSection(Context& context)
     context.noteInput(torus);
     const Measurement& m = timeOurs(torus, 0.3);
     timing.add({torus.name, count(static_cast<double>(torus.size())), "0.30",
-                m.ok ? count(m.value("kept")) : "failed: " + m.error, seconds(m.seconds),
-                sig(m.peak_mb, 3), count(m.value("repeats"))});
+                m.ok ? count(m.value("kept")) : "failed: " + m.error,
+                seconds(m.seconds), sig(m.peak_mb, 3), count(m.value("repeats"))});
     if (m.ok)
-      context.setTarget("1M decimation time", "< 60 s at rho 0.3", m.seconds < 60 ? 1 : 0,
-                        seconds(m.seconds) + " s, peak " + sig(m.peak_mb, 3) + " MB, kept " +
-                            count(m.value("kept")));
+      context.setTarget("1M decimation time", "< 60 s at rho 0.3",
+                        m.seconds < 60 ? 1 : 0,
+                        seconds(m.seconds) + " s, peak " + sig(m.peak_mb, 3) +
+                            " MB, kept " + count(m.value("kept")));
   }
   if (!timing.empty()) {
     report.heading(3, "Time and memory");
@@ -424,8 +438,8 @@ runDecimationSection(Context& context)
       "'all points' is the reconstruction of the undecimated input (the floor). Bold: the "
       "smallest H and the smallest mean of the row group. Times are of the filter at the "
       "tuned parameter (single runs).");
-  Table table({"input", "rho", "method", "kept", "parameter", "s", "peak MB", "triangles",
-               "loops", "H", "mean"});
+  Table table({"input", "rho", "method", "kept", "parameter", "s", "peak MB",
+               "triangles", "loops", "H", "mean"});
   std::size_t cases = 0, h_wins = 0, mean_wins = 0;
   std::vector<std::string> h_losses, mean_losses;
   for (const Input* input : inputs) {
@@ -433,8 +447,9 @@ runDecimationSection(Context& context)
     progress("decimation quality: " + input->name);
     const Measurement all =
         runIsolated([&](Measurement& m) { runAllPoints(*input, m); }, timeout);
-    table.add({input->name, "-", "all points", count(static_cast<double>(input->size())), "", "",
-               "", count(all.value("triangles")), count(all.value("loops")),
+    table.add({input->name, "-", "all points",
+               count(static_cast<double>(input->size())), "", "", "",
+               count(all.value("triangles")), count(all.value("loops")),
                sig(all.value("d_hausdorff"), 2), sig(all.value("d_mean"), 2)});
     for (const double rho : {0.3, 0.4}) {
       struct Row
@@ -449,7 +464,11 @@ runDecimationSection(Context& context)
           shown,
           peer
         } role = Role::peer;
-        bool ranked() const { return role != Role::shown; }
+        bool
+        ranked() const
+        {
+          return role != Role::shown;
+        }
       };
       std::vector<Row> rows;
       rows.push_back(
@@ -477,15 +496,15 @@ runDecimationSection(Context& context)
                          timeout),
              Row::Role::shown});
       for (const std::string& peer : peers()) {
-        const Measurement tuned =
-            runIsolated([&](Measurement& m) { tunePeer(*input, peer, target, m); }, timeout);
+        const Measurement tuned = runIsolated(
+            [&](Measurement& m) { tunePeer(*input, peer, target, m); }, timeout);
         if (!tuned.ok) {
           rows.push_back({peer, tuned});
           continue;
         }
-        rows.push_back({peer, runIsolated(
-                                  [&](Measurement& m) { runPeer(*input, peer, tuned, m); },
-                                  timeout)});
+        rows.push_back(
+            {peer, runIsolated([&](Measurement& m) { runPeer(*input, peer, tuned, m); },
+                               timeout)});
       }
       double best_h = std::numeric_limits<double>::infinity(), best_mean = best_h;
       for (const Row& r : rows)
@@ -552,19 +571,20 @@ runDecimationSection(Context& context)
         s += (s.empty() ? "" : "; ") + x;
       return s;
     };
-    context.setTarget("decimation error (Hausdorff)",
-                      "smaller two-sided Hausdorff error of the reconstruction than every "
-                      "peer filter at equal counts (bunny, generated shapes, rho 0.3 and 0.4)",
-                      h_wins == cases ? 1 : 0,
-                      "ours smallest in " + std::to_string(h_wins) + " of " +
-                          std::to_string(cases) + " cases" +
-                          (h_losses.empty() ? "" : "; not on: " + join(h_losses)));
-    context.setTarget("decimation error (mean)",
-                      "smaller mean two-sided error than every peer filter at equal counts",
-                      mean_wins == cases ? 1 : 0,
-                      "ours smallest in " + std::to_string(mean_wins) + " of " +
-                          std::to_string(cases) + " cases" +
-                          (mean_losses.empty() ? "" : "; not on: " + join(mean_losses)));
+    context.setTarget(
+        "decimation error (Hausdorff)",
+        "smaller two-sided Hausdorff error of the reconstruction than every "
+        "peer filter at equal counts (bunny, generated shapes, rho 0.3 and 0.4)",
+        h_wins == cases ? 1 : 0,
+        "ours smallest in " + std::to_string(h_wins) + " of " + std::to_string(cases) +
+            " cases" + (h_losses.empty() ? "" : "; not on: " + join(h_losses)));
+    context.setTarget(
+        "decimation error (mean)",
+        "smaller mean two-sided error than every peer filter at equal counts",
+        mean_wins == cases ? 1 : 0,
+        "ours smallest in " + std::to_string(mean_wins) + " of " +
+            std::to_string(cases) + " cases" +
+            (mean_losses.empty() ? "" : "; not on: " + join(mean_losses)));
   }
 }
 

@@ -193,13 +193,15 @@ runPoisson(const Input& input, bool quality, Measurement& m)
   auto cloud = pcl::make_shared<pcl::PointCloud<pcl::PointNormal>>();
   cloud->reserve(with_normals->size());
   for (const pcl::PointNormal& p : *with_normals)
-    if (std::isfinite(p.normal_x) && std::isfinite(p.normal_y) && std::isfinite(p.normal_z))
+    if (std::isfinite(p.normal_x) && std::isfinite(p.normal_y) &&
+        std::isfinite(p.normal_z))
       cloud->push_back(p);
   m.values["t_normals"] = meter.elapsed();
   pcl::Poisson<pcl::PointNormal> poisson;
   const int depth = input.size() <= 100000 ? 8 : 9;
   poisson.setDepth(depth);
-  poisson.setThreads(static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
+  poisson.setThreads(
+      static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
   poisson.setInputCloud(cloud);
   pcl::PointCloud<pcl::PointNormal> vertices;
   std::vector<pcl::Vertices> polygons;
@@ -231,7 +233,8 @@ runAdvancingFront(const Input& input, bool quality, Measurement& m)
     std::vector<TriangleIndices> triangles;
     triangles.reserve(facets.size());
     for (const auto& f : facets)
-      triangles.push_back({static_cast<std::uint32_t>(f[0]), static_cast<std::uint32_t>(f[1]),
+      triangles.push_back({static_cast<std::uint32_t>(f[0]),
+                           static_cast<std::uint32_t>(f[1]),
                            static_cast<std::uint32_t>(f[2])});
     recordMeshQuality(input, input.points, triangles, true, m);
   }
@@ -301,7 +304,8 @@ runInput(Context& context, const Input& input)
       {[&](int, Measurement& m) { runDelaunay(input, m); }, kNoBudget},
       {[&](int, Measurement& m) { runCore(input, m); }, kNoBudget},
       {[&](int r, Measurement& m) { runCocone(input, r == 0, m); }, kNoBudget}};
-  run.peers = !(context.options.quick && n >= kQuickPeerLimit) && !context.options.no_peers;
+  run.peers =
+      !(context.options.quick && n >= kQuickPeerLimit) && !context.options.no_peers;
   if (run.peers) {
     contestants.push_back(
         {[&](int r, Measurement& m) { runGreedyProjection(input, r == 0, m); },
@@ -394,8 +398,8 @@ runReconstructionSection(Context& context)
       "marked triangles; parallel). geometry/DT uses the core's own split of the same "
       "run. Peak: resident memory growth.");
   Table floor({"input", "points", "DT s", "DT peak MB", "core s", "core DT part s",
-               "geometry s", "geometry/DT", "core/DT", "core peak MB", "ours s", "ours/DT",
-               "ours peak MB"});
+               "geometry s", "geometry/DT", "core/DT", "core peak MB", "ours s",
+               "ours/DT", "ours peak MB"});
   double worst_geometry = 0;
   std::string worst_geometry_input;
   std::vector<std::string> geometry_misses;
@@ -413,23 +417,25 @@ runReconstructionSection(Context& context)
         geometry_misses.push_back(r.input->name + " " + sig(share, 2));
     }
     const Measurement* ours = r.find(kOurs);
-    floor.add({r.input->name, count(static_cast<double>(r.input->size())),
-               r.delaunay.ok ? seconds(dt) : failure(r.delaunay), sig(r.delaunay.peak_mb, 3),
-               r.core.ok ? seconds(r.core.seconds) : failure(r.core), seconds(core_dt),
-               seconds(geometry), sig(share, 2), ratio(r.core.seconds / dt),
-               sig(r.core.peak_mb, 3), ours ? seconds(ours->seconds) : "failed",
-               ours ? ratio(ours->seconds / dt) : "-", ours ? sig(ours->peak_mb, 3) : "-"});
+    floor.add(
+        {r.input->name, count(static_cast<double>(r.input->size())),
+         r.delaunay.ok ? seconds(dt) : failure(r.delaunay), sig(r.delaunay.peak_mb, 3),
+         r.core.ok ? seconds(r.core.seconds) : failure(r.core), seconds(core_dt),
+         seconds(geometry), sig(share, 2), ratio(r.core.seconds / dt),
+         sig(r.core.peak_mb, 3), ours ? seconds(ours->seconds) : "failed",
+         ours ? ratio(ours->seconds / dt) : "-", ours ? sig(ours->peak_mb, 3) : "-"});
   }
   report.table(floor);
   if (!runs.empty())
     context.setTarget("core geometry", "per-sample geometry <= 0.5x the Delaunay time",
                       geometry_misses.empty() ? 1 : 0,
-                      "worst geometry/DT " + sig(worst_geometry, 2) + " (" + worst_geometry_input +
-                          ")" +
+                      "worst geometry/DT " + sig(worst_geometry, 2) + " (" +
+                          worst_geometry_input + ")" +
                           (geometry_misses.empty()
                                ? ""
-                               : "; above 0.5 on " + std::to_string(geometry_misses.size()) +
-                                     " of " + std::to_string(runs.size()) + " inputs"));
+                               : "; above 0.5 on " +
+                                     std::to_string(geometry_misses.size()) + " of " +
+                                     std::to_string(runs.size()) + " inputs"));
 
   // --- paper Table 1 ------------------------------------------------------------
   Table paper({"paper model", "paper points", "paper triangles", "paper s (PIII 933)",
@@ -439,8 +445,8 @@ runReconstructionSection(Context& context)
       continue;
     const PaperReconstructionRow& p = *r.input->paper;
     const Measurement* ours = r.find(kOurs);
-    paper.add({p.name, count(p.points), count(p.triangles), count(p.seconds), r.input->name,
-               count(static_cast<double>(r.input->unique)),
+    paper.add({p.name, count(p.points), count(p.triangles), count(p.seconds),
+               r.input->name, count(static_cast<double>(r.input->unique)),
                ours ? count(ours->value("triangles")) : "failed",
                ours ? seconds(ours->seconds) : "-",
                ours ? ratio(ours->seconds / r.delaunay.seconds) : "-", r.input->note});
@@ -455,9 +461,9 @@ runReconstructionSection(Context& context)
 
   // --- quality per input ----------------------------------------------------------
   report.heading(3, "Time, memory and quality per input");
-  Table quality({"input", "method", "s", "xDT", "peak MB", "triangles", "used", "NM edges",
-                 "NM vertices", "loops", "closed", "chi", "genus", "oriented", "self-int.",
-                 "H", "mean"});
+  Table quality({"input", "method", "s", "xDT", "peak MB", "triangles", "used",
+                 "NM edges", "NM vertices", "loops", "closed", "chi", "genus",
+                 "oriented", "self-int.", "H", "mean"});
   for (const InputRun& r : runs) {
     for (const MethodRun& mr : r.methods) {
       const Measurement& m = mr.m;
@@ -473,17 +479,19 @@ runReconstructionSection(Context& context)
         method += " d" + std::to_string(static_cast<int>(m.value("depth")));
       const double self = m.value("self_intersections");
       quality.add(
-          {r.input->name, method, s, ratio(m.seconds / r.delaunay.seconds), sig(m.peak_mb, 3),
-           count(m.value("triangles")), std::isnan(m.value("used")) ? "N/A" : percent(m.value("used"), 2),
+          {r.input->name, method, s, ratio(m.seconds / r.delaunay.seconds),
+           sig(m.peak_mb, 3), count(m.value("triangles")),
+           std::isnan(m.value("used")) ? "N/A" : percent(m.value("used"), 2),
            count(m.value("nm_edges")), count(m.value("nm_vertices")),
-           integerOrDash(m.value("loops")), yesNo(m.value("closed")), count(m.value("chi")),
-           m.value("genus") < 0 ? "-" : count(m.value("genus")), yesNo(m.value("oriented")),
-           std::isnan(self) ? "skipped" : count(self), sig(m.value("d_hausdorff"), 2),
-           sig(m.value("d_mean"), 2)});
+           integerOrDash(m.value("loops")), yesNo(m.value("closed")),
+           count(m.value("chi")), m.value("genus") < 0 ? "-" : count(m.value("genus")),
+           yesNo(m.value("oriented")), std::isnan(self) ? "skipped" : count(self),
+           sig(m.value("d_hausdorff"), 2), sig(m.value("d_mean"), 2)});
     }
     if (!r.peers)
-      quality.add({r.input->name, "(peers)",
-                   context.options.no_peers ? "not run (--ours-only)" : "not run (--quick)"});
+      quality.add(
+          {r.input->name, "(peers)",
+           context.options.no_peers ? "not run (--ours-only)" : "not run (--quick)"});
   }
   report.table(quality);
   report.paragraph(
@@ -508,8 +516,9 @@ runReconstructionSection(Context& context)
     add("core alone: Delaunay (its own run)", largest->core.value("t_delaunay"));
     add("core alone: geometry (its own run)", largest->core.value("t_geometry"));
     add("CoconeReconstruction: core (Delaunay + geometry, by difference)",
-        m.seconds - m.value("t_boundary") - m.value("t_candidates") - m.value("t_pruning") -
-            m.value("t_walk") - m.value("t_stitching") - m.value("t_finishing"));
+        m.seconds - m.value("t_boundary") - m.value("t_candidates") -
+            m.value("t_pruning") - m.value("t_walk") - m.value("t_stitching") -
+            m.value("t_finishing"));
     add("BOUNDARY", m.value("t_boundary"));
     add("candidates, spacing, lids", m.value("t_candidates"));
     add("pruning", m.value("t_pruning"));
@@ -554,37 +563,39 @@ runReconstructionSection(Context& context)
     }
   }
   if (!runs.empty()) {
-    context.setTarget("no non-manifold edges", "zero non-manifold edges on every input",
-                      nonmanifold.empty() ? 1 : 0,
-                      nonmanifold.empty()
-                          ? "0 on all " + std::to_string(runs.size()) + " inputs"
-                          : "non-manifold edges on: " + [&] {
-                              std::string s;
-                              for (const std::string& x : nonmanifold)
-                                s += (s.empty() ? "" : ", ") + x;
-                              return s;
-                            }());
+    context.setTarget(
+        "no non-manifold edges", "zero non-manifold edges on every input",
+        nonmanifold.empty() ? 1 : 0,
+        nonmanifold.empty() ? "0 on all " + std::to_string(runs.size()) + " inputs"
+                            : "non-manifold edges on: " + [&] {
+                                std::string s;
+                                for (const std::string& x : nonmanifold)
+                                  s += (s.empty() ? "" : ", ") + x;
+                                return s;
+                              }());
     const auto join = [](const std::vector<std::string>& items) {
       std::string s;
       for (const std::string& x : items)
         s += (s.empty() ? "" : ", ") + x;
       return s;
     };
-    std::string evidence =
-        holes.empty() ? "0 loops and 95% of the samples or more on all " +
-                            std::to_string(closed_inputs) + " closed inputs"
-                      : "not on: " + join(holes);
+    std::string evidence = holes.empty()
+                               ? "0 loops and 95% of the samples or more on all " +
+                                     std::to_string(closed_inputs) + " closed inputs"
+                               : "not on: " + join(holes);
     evidence += "; open inputs of known topology: the reference's loops on " +
                 std::to_string(open_inputs - other_loops.size()) + " of " +
                 std::to_string(open_inputs);
     if (!other_loops.empty())
       evidence += " (not on: " + join(other_loops) + ")";
     if (!sparse.empty())
-      evidence += "; fewer than 95% of the samples used on the other inputs: " + join(sparse);
-    context.setTarget("no holes where closed",
-                      "no boundary loop on inputs whose reference surface is closed, and "
-                      "95% of their samples or more in the mesh",
-                      holes.empty() ? 1 : 0, evidence);
+      evidence +=
+          "; fewer than 95% of the samples used on the other inputs: " + join(sparse);
+    context.setTarget(
+        "no holes where closed",
+        "no boundary loop on inputs whose reference surface is closed, and "
+        "95% of their samples or more in the mesh",
+        holes.empty() ? 1 : 0, evidence);
   }
   // Large inputs: ours vs Delaunay and the peers.
   std::vector<std::string> speed_notes;
@@ -615,10 +626,11 @@ runReconstructionSection(Context& context)
     std::string s;
     for (const std::string& x : speed_notes)
       s += (s.empty() ? "" : ", ") + x;
-    context.setTarget("faster than GP3 and AFSR above 100k",
-                      "ours >= 2x faster than GreedyProjection and AdvancingFront on every "
-                      "input of 100k points and more (peer time / ours)",
-                      speed_met ? 1 : 0, s);
+    context.setTarget(
+        "faster than GP3 and AFSR above 100k",
+        "ours >= 2x faster than GreedyProjection and AdvancingFront on every "
+        "input of 100k points and more (peer time / ours)",
+        speed_met ? 1 : 0, s);
   }
   for (const InputRun& r : runs) {
     if (r.input->size() < 500000)
@@ -627,11 +639,12 @@ runReconstructionSection(Context& context)
     if (!ours)
       continue;
     const double factor = ours->seconds / r.delaunay.seconds;
-    context.setTarget("1M reconstruction vs Delaunay",
-                      "reconstruction of the 1M torus within 2.5x the bare Delaunay time",
-                      factor <= 2.5 ? 1 : 0,
-                      ratio(factor) + " (" + seconds(ours->seconds) + " s vs DT " +
-                          seconds(r.delaunay.seconds) + " s)");
+    context.setTarget(
+        "1M reconstruction vs Delaunay",
+        "reconstruction of the 1M torus within 2.5x the bare Delaunay time",
+        factor <= 2.5 ? 1 : 0,
+        ratio(factor) + " (" + seconds(ours->seconds) + " s vs DT " +
+            seconds(r.delaunay.seconds) + " s)");
     context.setTarget("1M reconstruction absolute",
                       "about 8 s and < 1.5 GB on this 2-core machine",
                       ours->seconds <= 8.5 && ours->peak_mb < 1536 ? 1 : 0,

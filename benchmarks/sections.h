@@ -21,14 +21,14 @@ namespace bench {
 
 struct Options
 {
-  bool quick = false;           ///< no 1M inputs, no peers at 100k points and above
-  std::string data_directory;   ///< where the data files are
-  std::string markdown;         ///< output file, empty for none
-  std::string only;             ///< one section, empty for all
-  std::string filter;           ///< only inputs whose name contains this
-  double timeout = 900;         ///< seconds per isolated run
-  std::size_t large = 1000000;  ///< size of the large torus
-  bool no_peers = false;        ///< ours only (for profiling)
+  bool quick = false;          ///< no 1M inputs, no peers at 100k points and above
+  std::string data_directory;  ///< where the data files are
+  std::string markdown;        ///< output file, empty for none
+  std::string only;            ///< one section, empty for all
+  std::string filter;          ///< only inputs whose name contains this
+  double timeout = 900;        ///< seconds per isolated run
+  std::size_t large = 1000000; ///< size of the large torus
+  bool no_peers = false;       ///< ours only (for profiling)
 };
 
 /** \brief A target of the brief with its verdict. */
@@ -62,19 +62,15 @@ public:
   }
 
   /** \brief Sets (or replaces) the verdict of a target. */
-  void
-  setTarget(const std::string& name, const std::string& goal, int status,
-            const std::string& evidence);
+  void setTarget(const std::string& name, const std::string& goal, int status,
+                 const std::string& evidence);
 
   /** \brief A data file's input, or null when it is missing (noted in skipped). */
-  const Input*
-  fileInput(const std::string& name);
+  const Input* fileInput(const std::string& name);
   /** \brief A generated blue-noise shape ("sphere", ..., "knot") with n samples. */
-  const Input&
-  generated(const std::string& shape, std::size_t n);
+  const Input& generated(const std::string& shape, std::size_t n);
   /** \brief The large jittered torus. */
-  const Input&
-  largeTorus();
+  const Input& largeTorus();
 
   /** \brief True when the input's name passes --filter. */
   bool
@@ -98,16 +94,12 @@ private:
   std::map<std::string, std::unique_ptr<Input>> inputs_;
 };
 
-void
-runReconstructionSection(Context& context);
-void
-runBoundarySection(Context& context);
-void
-runDecimationSection(Context& context);
+void runReconstructionSection(Context& context);
+void runBoundarySection(Context& context);
+void runDecimationSection(Context& context);
 
 /** \brief "1.23x" with two significant decimals; "-" for NaN. */
-std::string
-ratio(double value);
+std::string ratio(double value);
 
 } // namespace bench
 } // namespace cocone

@@ -64,8 +64,7 @@ fail(std::string message)
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
       c = '?';
   std::fflush(stdout);
-  std::fprintf(stderr, "%s: %s\n", kProgram,
-               pcl::cocone::utf8Escaped(message).c_str());
+  std::fprintf(stderr, "%s: %s\n", kProgram, pcl::cocone::utf8Escaped(message).c_str());
   std::exit(EXIT_FAILURE);
 }
 
@@ -134,9 +133,8 @@ parseNumber(const std::string& option, const char* text, double low, bool low_op
   std::snprintf(range, sizeof range, "%c%g, %g]", low_open ? '(' : '[', low, high);
   if (!whole || errno == ERANGE || !std::isfinite(value) ||
       (integer && value != std::floor(value)))
-    fail(option + ": '" + text + "' is not " +
-         (integer ? "an integer" : "a number") + " (expected a value in " + range +
-         ")");
+    fail(option + ": '" + text + "' is not " + (integer ? "an integer" : "a number") +
+         " (expected a value in " + range + ")");
   if ((low_open ? value <= low : value < low) || value > high)
     fail(option + ": " + text + " is outside the valid range " + range);
   return value;
@@ -172,8 +170,8 @@ parseCommandLine(int argc, char** argv)
       settings.verbose = true;
       continue;
     }
-    if (i + 1 >= argc || std::find(known.begin(), known.end(),
-                                   std::string(argv[i + 1])) != known.end())
+    if (i + 1 >= argc ||
+        std::find(known.begin(), known.end(), std::string(argv[i + 1])) != known.end())
       fail(arg + " needs a value (see " + kProgram + " -h)");
     const char* value = argv[++i];
     if (arg == "-mean_k")

@@ -39,8 +39,10 @@ expectEnd(Read read)
 {
   try {
     read();
-  } catch (const io::FormatError&) {
-  } catch (const std::length_error&) {
+  }
+  catch (const io::FormatError&) {
+  }
+  catch (const std::length_error&) {
   }
 }
 

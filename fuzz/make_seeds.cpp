@@ -146,8 +146,8 @@ main(int argc, char** argv)
       "6 7 8 17 0\r\n3 0 1 2\r\n1 0\r\n0\r\n");
   put("ply", "little.ply", binaryPly(false));
   put("ply", "big.ply", binaryPly(true));
-  const std::vector<std::array<float, 3> > vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
-  const std::vector<std::array<std::uint32_t, 3> > triangles = {{0, 1, 2}};
+  const std::vector<std::array<float, 3>> vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  const std::vector<std::array<std::uint32_t, 3>> triangles = {{0, 1, 2}};
   for (const char* name : {"written.ply", "written.obj"}) {
     const fs::path path =
         out_dir / (fs::path(name).extension() == ".ply" ? "ply" : "obj");

@@ -8,11 +8,15 @@
 #include <pcl/impl/instantiate.hpp>
 #include <pcl/point_types.h>
 
+// Kept as written: clang-format would break the list inside the parentheses.
+// clang-format off
 #define PCL_COCONE_XYZ_POINT_TYPES                                                     \
   (pcl::PointXYZ)(pcl::PointXYZI)(pcl::PointXYZL)(pcl::PointXYZRGB)(pcl::PointXYZRGBA) \
   (pcl::PointXYZRGBL)(pcl::PointNormal)(pcl::PointXYZINormal)(pcl::PointXYZRGBNormal)  \
   (pcl::PointXYZLNormal)(pcl::PointWithViewpoint)
+// clang-format on
 
-PCL_INSTANTIATE_PRODUCT(BoundarySampleEstimation, (PCL_COCONE_XYZ_POINT_TYPES)((pcl::Boundary)))
+PCL_INSTANTIATE_PRODUCT(BoundarySampleEstimation,
+                        (PCL_COCONE_XYZ_POINT_TYPES)((pcl::Boundary)))
 PCL_INSTANTIATE(CoconeReconstruction, PCL_COCONE_XYZ_POINT_TYPES)
 PCL_INSTANTIATE(VoronoiDecimation, PCL_COCONE_XYZ_POINT_TYPES)

@@ -60,7 +60,7 @@ using ShapeGenerator = SampledShape (*)(std::size_t, std::uint32_t);
 const SampledShape&
 cachedShape(const std::string& name, ShapeGenerator generate, std::size_t n = kSamples)
 {
-  static std::map<std::string, std::unique_ptr<SampledShape> > cache;
+  static std::map<std::string, std::unique_ptr<SampledShape>> cache;
   const std::string key = name + "/" + std::to_string(n);
   auto it = cache.find(key);
   if (it == cache.end())
@@ -142,14 +142,15 @@ class NearestPoint
 {
 public:
   explicit NearestPoint(const std::vector<Eigen::Vector3d>& points)
-      : cloud_(toCloud(points))
+    : cloud_(toCloud(points))
   {
     if (!points.empty())
       tree_.setInputCloud(cloud_);
   }
 
   /** Distance from \a x to the nearest point of the set; +infinity for an empty set. */
-  double distance(const Eigen::Vector3d& x) const
+  double
+  distance(const Eigen::Vector3d& x) const
   {
     if (cloud_->empty())
       return kInfinity;
@@ -163,7 +164,8 @@ public:
   }
 
   /** The \a k nearest points of the set to \a x (x itself included when it is one). */
-  pcl::Indices nearest(const Eigen::Vector3d& x, int k) const
+  pcl::Indices
+  nearest(const Eigen::Vector3d& x, int k) const
   {
     pcl::PointXYZ query(static_cast<float>(x.x()), static_cast<float>(x.y()),
                         static_cast<float>(x.z()));
@@ -205,8 +207,7 @@ measureCoverage(const std::vector<Eigen::Vector3d>& rim,
   const NearestPoint nearest_flag(flagged);
   std::size_t covered = 0;
   largest_gap = 0;
-  for (const Eigen::Vector3d& r : rim)
-  {
+  for (const Eigen::Vector3d& r : rim) {
     const double d = nearest_flag.distance(r);
     covered += d <= near;
     largest_gap = std::max(largest_gap, d);
@@ -225,8 +226,7 @@ measureRim(const SampledShape& shape, const std::vector<std::uint8_t>& flags)
   const std::vector<Eigen::Vector3d> flagged = flaggedPoints(shape.points, flags);
   m.flagged = flagged.size();
   m.flagged_fraction = static_cast<double>(m.flagged) / m.samples;
-  if (!flagged.empty())
-  {
+  if (!flagged.empty()) {
     std::size_t near = 0;
     for (const Eigen::Vector3d& p : flagged)
       near += shape.distance_to_rim(p) <= 3 * h;
@@ -272,9 +272,8 @@ quantile(std::vector<double> values, double q)
 {
   if (values.empty())
     return std::numeric_limits<double>::quiet_NaN();
-  const auto at
-      = values.begin()
-        + static_cast<std::ptrdiff_t>(q * static_cast<double>(values.size() - 1));
+  const auto at = values.begin() + static_cast<std::ptrdiff_t>(
+                                       q * static_cast<double>(values.size() - 1));
   std::nth_element(values.begin(), at, values.end());
   return *at;
 }
@@ -304,8 +303,7 @@ caseName(const testing::TestParamInfo<ShapeCase>& info)
 // --- closed smooth surfaces: (almost) nothing is flagged ---------------------------
 
 class ClosedSmoothSurface : public testing::TestWithParam<ShapeCase>
-{
-};
+{};
 
 TEST_P(ClosedSmoothSurface, FlagsAtMostOnePercent)
 {
@@ -334,8 +332,7 @@ INSTANTIATE_TEST_SUITE_P(
 // --- open surfaces: the flags are the rim, all of it -------------------------------
 
 class OpenSurface : public testing::TestWithParam<ShapeCase>
-{
-};
+{};
 
 TEST_P(OpenSurface, FlagsFollowTheWholeRim)
 {
@@ -365,8 +362,7 @@ TEST_P(OpenSurface, BoundaryBandCoversTheRimRow)
 
   std::size_t near_rim = 0, near_rim_flagged = 0;
   for (std::size_t i = 0; i < shape.points.size(); ++i)
-    if (shape.distance_to_rim(shape.points[i]) <= h)
-    {
+    if (shape.distance_to_rim(shape.points[i]) <= h) {
       ++near_rim;
       near_rim_flagged += run.flags[i];
     }
@@ -454,8 +450,7 @@ TEST(BoundarySampleEstimation, CubeFlagsFollowItsEdges)
 
   std::size_t far = 0, far_flagged = 0;
   for (std::size_t i = 0; i < shape.points.size(); ++i)
-    if (shape.distance_to_rim(shape.points[i]) > 3 * h)
-    {
+    if (shape.distance_to_rim(shape.points[i]) > 3 * h) {
       ++far;
       far_flagged += run.flags[i];
     }
@@ -476,8 +471,7 @@ TEST(BoundarySampleEstimation, CubeFlagsFollowItsEdges)
 // --- per-point Voronoi values: pole vectors and heights ---------------------------
 
 class PoleAndHeight : public testing::TestWithParam<ShapeCase>
-{
-};
+{};
 
 TEST_P(PoleAndHeight, MatchNormalsAndLocalFeatureSize)
 {
@@ -489,15 +483,13 @@ TEST_P(PoleAndHeight, MatchNormalsAndLocalFeatureSize)
 
   std::vector<double> angles, errors;
   std::size_t undefined_heights = 0;
-  for (std::size_t i = 0; i < shape.points.size(); ++i)
-  {
+  for (std::size_t i = 0; i < shape.points.size(); ++i) {
     const Eigen::Vector3d v = run.poles[i].cast<double>();
     ASSERT_TRUE(v.allFinite()) << "row " << i;
     EXPECT_NEAR(v.norm(), 1.0, 1e-4) << "row " << i;
     const double c = std::min(1.0, std::abs(v.normalized().dot(shape.normals[i])));
     angles.push_back(std::acos(c) * 180 / kPi);
-    if (!std::isfinite(run.heights[i]))
-    {
+    if (!std::isfinite(run.heights[i])) {
       ++undefined_heights;
       continue;
     }
@@ -532,12 +524,11 @@ loadCloud(const std::string& path)
 {
   pcl::PCLPointCloud2 blob;
   std::string error;
-  if (!pcl::cocone::loadPointSamples(path, blob, &error))
-  {
+  if (!pcl::cocone::loadPointSamples(path, blob, &error)) {
     ADD_FAILURE() << "cannot read " << path << ": " << error;
     return nullptr;
   }
-  auto cloud = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ> >();
+  auto cloud = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
   pcl::fromPCLPointCloud2(blob, *cloud);
   return cloud;
 }
@@ -559,22 +550,20 @@ TEST(BoundarySampleEstimation, StanfordBunnyHoles)
   std::vector<pcl::cocone::TriangleIndices> triangles;
   std::vector<std::uint8_t> in_mesh(points.size(), 0);
   double area = 0;
-  for (const pcl::Vertices& f : faces)
-  {
+  for (const pcl::Vertices& f : faces) {
     ASSERT_EQ(f.vertices.size(), 3u);
     pcl::cocone::TriangleIndices t;
-    for (int k = 0; k < 3; ++k)
-    {
+    for (int k = 0; k < 3; ++k) {
       ASSERT_LT(f.vertices[k], points.size());
       t[k] = f.vertices[k];
       in_mesh[t[k]] = 1;
     }
     triangles.push_back(t);
-    area += 0.5
-            * (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).norm();
+    area +=
+        0.5 * (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).norm();
   }
-  const pcl::cocone::MeshTopology topology
-      = pcl::cocone::analyzeTriangleMesh(triangles);
+  const pcl::cocone::MeshTopology topology =
+      pcl::cocone::analyzeTriangleMesh(triangles);
   ASSERT_FALSE(topology.boundary_loops.empty())
       << "the reference mesh should have holes (223 boundary edges)";
   // The samples of the surface are the vertices the mesh uses.
@@ -593,8 +582,7 @@ TEST(BoundarySampleEstimation, StanfordBunnyHoles)
   double coverage = 0, largest_gap = 0;
   measureCoverage(hole_rim, flagged, 3 * h, coverage, largest_gap);
   std::ostringstream per_hole;
-  for (const auto& loop : topology.boundary_loops)
-  {
+  for (const auto& loop : topology.boundary_loops) {
     std::vector<Eigen::Vector3d> loop_points;
     for (const std::uint32_t v : loop)
       loop_points.push_back(points[v]);
@@ -604,8 +592,7 @@ TEST(BoundarySampleEstimation, StanfordBunnyHoles)
   }
   std::size_t off_mesh = 0, off_mesh_flagged = 0;
   for (std::size_t i = 0; i < points.size(); ++i)
-    if (!in_mesh[i])
-    {
+    if (!in_mesh[i]) {
       ++off_mesh;
       off_mesh_flagged += run.flags[i];
     }
@@ -614,8 +601,7 @@ TEST(BoundarySampleEstimation, StanfordBunnyHoles)
   // The bunny stands with y up; the ears are the thin parts at the top (largest y).
   const NearestPoint nearest_rim(hole_rim);
   double y_lo = kInfinity, y_hi = -kInfinity;
-  for (const Eigen::Vector3d& p : points)
-  {
+  for (const Eigen::Vector3d& p : points) {
     y_lo = std::min(y_lo, p.y());
     y_hi = std::max(y_hi, p.y());
   }
@@ -629,14 +615,13 @@ TEST(BoundarySampleEstimation, StanfordBunnyHoles)
     ++samples_by_band[band(p)];
   std::size_t off_rim = 0;
   for (const Eigen::Vector3d& p : flagged)
-    if (nearest_rim.distance(p) > 3 * h)
-    {
+    if (nearest_rim.distance(p) > 3 * h) {
       ++off_rim;
       ++off_rim_by_band[band(p)];
     }
   const double off_rim_fraction = static_cast<double>(off_rim) / flagged.size();
-  const double top_share
-      = off_rim ? static_cast<double>(off_rim_by_band[kBands - 1]) / off_rim : 0.0;
+  const double top_share =
+      off_rim ? static_cast<double>(off_rim_by_band[kBands - 1]) / off_rim : 0.0;
 
   std::cout << "[ measured ] bunny: n=" << points.size() << " (" << topology.vertices
             << " in the mesh), spacing=" << std::setprecision(4) << h << ", "
@@ -672,15 +657,13 @@ estimateRimSamples(const std::vector<Eigen::Vector3d>& points, const NearestPoin
 {
   constexpr int kNeighbours = 12;
   std::vector<std::uint8_t> rim(points.size(), 0);
-  for (std::size_t i = 0; i < points.size(); ++i)
-  {
+  for (std::size_t i = 0; i < points.size(); ++i) {
     const pcl::Indices found = all.nearest(points[i], kNeighbours + 1);
     std::vector<Eigen::Vector3d> neighbours;
     for (const pcl::index_t j : found)
       if (static_cast<std::size_t>(j) != i && (points[j] - points[i]).norm() > 0)
         neighbours.push_back(points[j]);
-    if (neighbours.size() < 3)
-    {
+    if (neighbours.size() < 3) {
       rim[i] = 1;
       continue;
     }
@@ -713,7 +696,7 @@ TEST(BoundarySampleEstimation, MilkCartonPartialView)
   PCL_COCONE_REQUIRE_DATA_FILE(path, "pcl_milk_13704.pcd");
   const auto raw = loadCloud(path);
   ASSERT_TRUE(raw);
-  auto cloud = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ> >();
+  auto cloud = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
   for (const pcl::PointXYZ& p : *raw)
     if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))
       cloud->push_back(p);
@@ -723,13 +706,10 @@ TEST(BoundarySampleEstimation, MilkCartonPartialView)
   // Spacing: no reference surface, so a robust estimate from the samples.
   const NearestPoint all(points);
   std::vector<double> nearest_distances;
-  for (std::size_t i = 0; i < points.size(); ++i)
-  {
-    for (const pcl::index_t j : all.nearest(points[i], 4))
-    {
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (const pcl::index_t j : all.nearest(points[i], 4)) {
       const double d = (points[j] - points[i]).norm();
-      if (static_cast<std::size_t>(j) != i && d > 0)
-      {
+      if (static_cast<std::size_t>(j) != i && d > 0) {
         nearest_distances.push_back(d);
         break;
       }
@@ -758,8 +738,7 @@ TEST(BoundarySampleEstimation, MilkCartonPartialView)
   // disagreeing pole lines.
   std::size_t far = 0, far_fat = 0;
   for (std::size_t i = 0; i < points.size(); ++i)
-    if (run.flags[i] && nearest_rim.distance(points[i]) > 3 * h)
-    {
+    if (run.flags[i] && nearest_rim.distance(points[i]) > 3 * h) {
       ++far;
       far_fat += !(run.ratios[i] <= 0.99);
     }
@@ -805,7 +784,7 @@ computeCapturingStderr(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
 
 TEST(BoundarySampleEstimation, EmptyCloudGivesEmptyOutput)
 {
-  auto cloud = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ> >();
+  auto cloud = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
   std::string printed;
   EXPECT_EQ(computeCapturingStderr(cloud, printed), 0u);
 }
@@ -813,12 +792,11 @@ TEST(BoundarySampleEstimation, EmptyCloudGivesEmptyOutput)
 TEST(BoundarySampleEstimation, FewerThanFourPointsIsAnError)
 {
   // Three points; and five rows of which only three are distinct finite points.
-  const std::vector<std::vector<Eigen::Vector3d> > inputs = {
+  const std::vector<std::vector<Eigen::Vector3d>> inputs = {
       {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},
       {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 0, 0}, {0, 0, 0}},
   };
-  for (const auto& points : inputs)
-  {
+  for (const auto& points : inputs) {
     std::string printed;
     EXPECT_EQ(computeCapturingStderr(toCloud(points), printed), 0u);
     EXPECT_NE(printed.find("BoundarySampleEstimation"), std::string::npos) << printed;
@@ -836,34 +814,30 @@ TEST(BoundarySampleEstimation, CoplanarAndCollinearPointsAreAnError)
   // Exactly coplanar or collinear in float (dyadic coordinates), so that rounding to
   // the cloud's floats cannot lift them into 3D: planes parallel to a coordinate plane
   // and tilted ones, lines through the origin and elsewhere.
-  std::vector<std::pair<std::string, std::vector<Eigen::Vector3d> > > inputs
-      = {{"plane z = 0", {}},
-         {"plane z = 0.25", {}},
-         {"tilted plane z = x - y", {}},
-         {"tilted plane z = 0.5 x + 0.25 y + 3", {}},
-         {"line through the origin", {}},
-         {"line through (3, 1, -2)", {}}};
+  std::vector<std::pair<std::string, std::vector<Eigen::Vector3d>>> inputs = {
+      {"plane z = 0", {}},
+      {"plane z = 0.25", {}},
+      {"tilted plane z = x - y", {}},
+      {"tilted plane z = 0.5 x + 0.25 y + 3", {}},
+      {"line through the origin", {}},
+      {"line through (3, 1, -2)", {}}};
   for (int i = 0; i < 20; ++i)
-    for (int j = 0; j < 20; ++j)
-    {
+    for (int j = 0; j < 20; ++j) {
       const double x = i + 0.25 * (j % 3), y = j + 0.5 * (i % 2);
       inputs[0].second.emplace_back(x, y, 0);
       inputs[1].second.emplace_back(x, y, 0.25);
       inputs[2].second.emplace_back(x, y, x - y);
       inputs[3].second.emplace_back(x, y, 0.5 * x + 0.25 * y + 3);
     }
-  for (int i = 0; i < 200; ++i)
-  {
+  for (int i = 0; i < 200; ++i) {
     const Eigen::Vector3d direction(1, -2, 0.5);
     inputs[4].second.push_back(direction * (0.125 * i * i));
     inputs[5].second.push_back(Eigen::Vector3d(3, 1, -2) + direction * (0.125 * i * i));
   }
-  for (const auto& input : inputs)
-  {
+  for (const auto& input : inputs) {
     SCOPED_TRACE(input.first);
     std::string printed;
-    const std::size_t rows
-        = computeCapturingStderr(toCloud(input.second), printed);
+    const std::size_t rows = computeCapturingStderr(toCloud(input.second), printed);
     std::cout << "[ measured ] " << input.first << " (" << input.second.size()
               << " points): output rows=" << rows << ", error reported: "
               << (printed.find("BoundarySampleEstimation") != std::string::npos ? "yes"
@@ -884,12 +858,10 @@ TEST(BoundarySampleEstimation, NonFinitePointsAreSkipped)
   // Every 97th row of the mixed cloud is bad: NaN or infinite in one coordinate.
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
-  auto mixed = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ> >();
+  auto mixed = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
   std::vector<std::ptrdiff_t> source; // row of `clean`, or -1 for a bad row
-  for (std::size_t i = 0; i < clean->size(); ++i)
-  {
-    if (i % 97 == 0)
-    {
+  for (std::size_t i = 0; i < clean->size(); ++i) {
+    if (i % 97 == 0) {
       const int kind = static_cast<int>(source.size() % 4);
       pcl::PointXYZ bad(0.5f, 0.5f, 0.5f);
       if (kind == 0)
@@ -913,10 +885,8 @@ TEST(BoundarySampleEstimation, NonFinitePointsAreSkipped)
   ASSERT_EQ(run.validity.size(), mixed->size());
   EXPECT_FALSE(run.is_dense);
   std::size_t bad_rows = 0, changed = 0;
-  for (std::size_t row = 0; row < mixed->size(); ++row)
-  {
-    if (source[row] < 0)
-    {
+  for (std::size_t row = 0; row < mixed->size(); ++row) {
+    if (source[row] < 0) {
       ++bad_rows;
       EXPECT_EQ(run.flags[row], 0) << "row " << row;
       EXPECT_EQ(run.validity[row], 0) << "row " << row;
@@ -926,11 +896,11 @@ TEST(BoundarySampleEstimation, NonFinitePointsAreSkipped)
     }
     const std::size_t i = static_cast<std::size_t>(source[row]);
     EXPECT_EQ(run.validity[row], 1) << "row " << row;
-    const bool same = run.flags[row] == reference.flags[i]
-                      && (run.heights[row] == reference.heights[i]
-                          || std::abs(run.heights[row] - reference.heights[i])
-                                 <= 1e-5f * std::abs(reference.heights[i]))
-                      && (run.poles[row] - reference.poles[i]).norm() <= 1e-5f;
+    const bool same = run.flags[row] == reference.flags[i] &&
+                      (run.heights[row] == reference.heights[i] ||
+                       std::abs(run.heights[row] - reference.heights[i]) <=
+                           1e-5f * std::abs(reference.heights[i])) &&
+                      (run.poles[row] - reference.poles[i]).norm() <= 1e-5f;
     changed += !same;
   }
   std::cout << "[ measured ] non-finite rows: " << bad_rows << " of " << mixed->size()
@@ -948,14 +918,12 @@ TEST(BoundarySampleEstimation, DuplicatesGetTheirRepresentativesFlag)
   const BoundaryRun reference = runBoundary<pcl::PointXYZ>(clean);
 
   // Copies of every 13th point, and several copies of the flagged ones, appended.
-  auto doubled = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ> >(*clean);
+  auto doubled = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>(*clean);
   std::vector<std::size_t> original;
-  for (std::size_t i = 0; i < clean->size(); ++i)
-  {
-    const int copies
-        = (i % 13 == 0 ? 1 : 0) + (reference.flags[i] && i % 5 == 0 ? 2 : 0);
-    for (int c = 0; c < copies; ++c)
-    {
+  for (std::size_t i = 0; i < clean->size(); ++i) {
+    const int copies =
+        (i % 13 == 0 ? 1 : 0) + (reference.flags[i] && i % 5 == 0 ? 2 : 0);
+    for (int c = 0; c < copies; ++c) {
       doubled->push_back((*clean)[i]);
       original.push_back(i);
     }
@@ -965,8 +933,7 @@ TEST(BoundarySampleEstimation, DuplicatesGetTheirRepresentativesFlag)
   ASSERT_EQ(run.rows, doubled->size());
 
   std::size_t flagged_copies = 0, mismatched = 0, changed = 0;
-  for (std::size_t k = 0; k < original.size(); ++k)
-  {
+  for (std::size_t k = 0; k < original.size(); ++k) {
     const std::size_t row = clean->size() + k;
     mismatched += run.flags[row] != run.flags[original[k]];
     flagged_copies += run.flags[row];
@@ -1002,13 +969,12 @@ TEST(BoundarySampleEstimation, IndicesSelectRowsOfTheFullRun)
   ASSERT_EQ(subset.rows, indices->size());
   ASSERT_EQ(subset.heights.size(), indices->size());
   std::size_t differing = 0, flagged = 0;
-  for (std::size_t row = 0; row < indices->size(); ++row)
-  {
+  for (std::size_t row = 0; row < indices->size(); ++row) {
     const std::size_t i = static_cast<std::size_t>((*indices)[row]);
-    differing += subset.flags[row] != full.flags[i]
-                 || std::abs(subset.heights[row] - full.heights[i])
-                        > 1e-5f * std::abs(full.heights[i])
-                 || (subset.poles[row] - full.poles[i]).norm() > 1e-5f;
+    differing += subset.flags[row] != full.flags[i] ||
+                 std::abs(subset.heights[row] - full.heights[i]) >
+                     1e-5f * std::abs(full.heights[i]) ||
+                 (subset.poles[row] - full.poles[i]).norm() > 1e-5f;
     flagged += subset.flags[row];
   }
   std::cout << "[ measured ] indices: " << indices->size() << " rows (" << flagged
@@ -1096,7 +1062,8 @@ TEST(BoundarySampleEstimation, SearchSurfaceIsNotSupported)
 // ---------------------------------------------------------------------------------
 // Point types
 
-template <typename PointT> const char* pointTypeName();
+template <typename PointT>
+const char* pointTypeName();
 template <>
 const char*
 pointTypeName<pcl::PointXYZ>()
@@ -1116,9 +1083,9 @@ pointTypeName<pcl::PointNormal>()
   return "PointNormal";
 }
 
-template <typename PointT> class BoundarySampleEstimationTyped : public testing::Test
-{
-};
+template <typename PointT>
+class BoundarySampleEstimationTyped : public testing::Test
+{};
 
 using PointTypes = testing::Types<pcl::PointXYZ, pcl::PointXYZRGB, pcl::PointNormal>;
 TYPED_TEST_SUITE(BoundarySampleEstimationTyped, PointTypes);

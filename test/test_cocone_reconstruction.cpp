@@ -86,14 +86,16 @@ reconstruct(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud, const std::string&
 /** The mesh stays close to the surface: points sampled on its triangles are within a
  * fraction of the spacing of the analytic surface. */
 void
-expectCloseToSurface(const SampledShape& shape, const std::vector<TriangleIndices>& mesh)
+expectCloseToSurface(const SampledShape& shape,
+                     const std::vector<TriangleIndices>& mesh)
 {
   const Points on_mesh = samplePointsOnMesh(shape.points, mesh, 2);
   double largest = 0;
   for (const Eigen::Vector3d& p : on_mesh)
     largest = std::max(largest, shape.distance_to_surface(p));
-  std::cout << "[ " << shape.name << " ] mesh-to-surface distance: "
-            << largest / shape.spacing() << " spacings" << std::endl;
+  std::cout << "[ " << shape.name
+            << " ] mesh-to-surface distance: " << largest / shape.spacing()
+            << " spacings" << std::endl;
   // A triangle across one of the cube's sharp edges, its corners a spacing or so away
   // on either face, cuts the edge: 0.36 to 0.54 spacings deep over eight input orders
   // of the same samples. Smooth shapes stay below 0.16.
@@ -122,7 +124,8 @@ TEST_P(AnalyticShapes, ExactTopology)
   EXPECT_EQ(result.topology.triangles, result.triangles.size());
   EXPECT_EQ(topology.components, 1u) << shape.name;
   EXPECT_EQ(topology.genus(), shape.genus) << shape.name;
-  EXPECT_EQ(topology.boundary_loops.size(), static_cast<std::size_t>(shape.boundary_loops))
+  EXPECT_EQ(topology.boundary_loops.size(),
+            static_cast<std::size_t>(shape.boundary_loops))
       << shape.name;
   EXPECT_EQ(topology.isClosed(), shape.closed) << shape.name;
   if (shape.closed) {
@@ -135,8 +138,7 @@ TEST_P(AnalyticShapes, ExactTopology)
   expectCloseToSurface(shape, result.triangles);
 }
 
-INSTANTIATE_TEST_SUITE_P(Cocone,
-                         AnalyticShapes,
+INSTANTIATE_TEST_SUITE_P(Cocone, AnalyticShapes,
                          ::testing::Values(ShapeCase{sampleSphere, 4000},
                                            ShapeCase{sampleSphereWithDenseCap, 6000},
                                            ShapeCase{sampleTorus, 6000},
@@ -249,11 +251,11 @@ TEST(CoconeReconstruction, IndicesIndexTheWholeCloud)
 // statistics (getReport()) hold no index at all.
 TEST(CoconeReconstruction, EveryIndexHandedOutIsACloudIndex)
 {
-  static_assert(std::is_same_v<decltype(std::declval<pcl::CoconeReconstruction<
-                                            pcl::PointXYZ>>()
-                                            .getReport()),
-                               const pcl::cocone::ReconstructionStatistics&>,
-                "getReport() hands out counts and timings only");
+  static_assert(
+      std::is_same_v<decltype(std::declval<pcl::CoconeReconstruction<pcl::PointXYZ>>()
+                                  .getReport()),
+                     const pcl::cocone::ReconstructionStatistics&>,
+      "getReport() hands out counts and timings only");
   const SampledShape hemisphere = sampleHemisphere(3000, 6);
   const SampledShape sphere = sampleSphere(500, 6);
   pcl::PointCloud<pcl::PointXYZ>::Ptr cloud = toCloud(sphere.points);
@@ -283,8 +285,8 @@ TEST(CoconeReconstruction, EveryIndexHandedOutIsACloudIndex)
   std::vector<pcl::Vertices> polygons;
   cocone.reconstruct(polygons);
   ASSERT_FALSE(polygons.empty()) << cocone.getErrorMessage();
-  const MeshTopology topology = expectValidSurface(toPoints(*cloud), toTriangles(polygons),
-                                                   "shuffled hemisphere subset");
+  const MeshTopology topology = expectValidSurface(
+      toPoints(*cloud), toTriangles(polygons), "shuffled hemisphere subset");
   EXPECT_EQ(topology.boundary_loops.size(), 1u);
 
   std::set<pcl::index_t> used;
@@ -345,8 +347,8 @@ TEST(CoconeReconstruction, DegenerateInputGivesNoPolygon)
     cocone.reconstruct(polygons);
     return polygons.size();
   };
-  EXPECT_EQ(run(pcl::PointCloud<pcl::PointXYZ>::Ptr(new pcl::PointCloud<pcl::PointXYZ>)),
-            0u);
+  EXPECT_EQ(
+      run(pcl::PointCloud<pcl::PointXYZ>::Ptr(new pcl::PointCloud<pcl::PointXYZ>)), 0u);
   EXPECT_EQ(run(toCloud({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}})), 0u);
   Points plane, line;
   for (int i = 0; i < 20; ++i)
@@ -429,10 +431,10 @@ TEST(CoconeReconstruction, OutliersStayOut)
  * over (1 in 30 with stitching and 1 in 30 without, against about 1 in 3 before): seed
  * 24 does with stitching, seed 9 without, so the crossing check has work in both
  * tests. */
-std::vector<std::pair<Points, double> >
+std::vector<std::pair<Points, double>>
 noisySpheres()
 {
-  std::vector<std::pair<Points, double> > spheres;
+  std::vector<std::pair<Points, double>> spheres;
   for (const std::uint32_t seed : {2u, 9u, 24u}) {
     const SampledShape sphere = sampleSphere(8000, seed);
     std::mt19937 random(seed);
@@ -600,10 +602,8 @@ loadDataSet(const std::string& path)
  * and checks it is small; with \a one_sided, only the distance from the output to the
  * file's mesh is checked (the file's mesh may cover what the samples do not). */
 void
-reportDistanceToReference(const DataSet& data,
-                          const std::vector<TriangleIndices>& mesh,
-                          const std::string& label,
-                          bool one_sided = false)
+reportDistanceToReference(const DataSet& data, const std::vector<TriangleIndices>& mesh,
+                          const std::string& label, bool one_sided = false)
 {
   if (data.reference.empty())
     return;
@@ -657,9 +657,9 @@ TEST(CoconeReconstructionData, CactusUsesEveryDistinctSample)
   std::size_t loop_edges = 0;
   for (const auto& loop : result.topology.boundary_loops)
     loop_edges += loop.size();
-  std::cout << "[ cactus ] " << result.topology.triangles << " triangles (paper: 6538), "
-            << result.topology.boundary_loops.size() << " open loops with " << loop_edges
-            << " edges" << std::endl;
+  std::cout << "[ cactus ] " << result.topology.triangles
+            << " triangles (paper: 6538), " << result.topology.boundary_loops.size()
+            << " open loops with " << loop_edges << " edges" << std::endl;
   // F = 2V - 4 + 2b - e holds for any genus-0 manifold; the paper's count means b = 1,
   // e = 20.
   ASSERT_EQ(result.topology.boundary_loops.size(), 1u);
@@ -698,7 +698,8 @@ TEST(CoconeReconstructionData, BunnyIsOpenOnlyAtTheHolesOfItsBase)
   const Points points = toPoints(*data.cloud);
   double area = 0;
   for (const TriangleIndices& t : data.reference)
-    area += 0.5 * (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).norm();
+    area +=
+        0.5 * (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).norm();
   const double spacing = std::sqrt(area / static_cast<double>(points.size()));
   // Each open loop lies along a hole of the reference, and each hole has a loop.
   const auto near_loop = [&](const std::vector<std::uint32_t>& loop,

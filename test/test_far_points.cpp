@@ -89,7 +89,8 @@ expectOnlyReported(const Results& without, const Results& with, pcl::index_t far
   EXPECT_EQ(with.unused, unused) << label;
   EXPECT_EQ(with.reconstruction_far, pcl::Indices{far}) << label;
   ASSERT_EQ(with.flags.size(), without.flags.size() + 1) << label;
-  EXPECT_TRUE(std::equal(without.flags.begin(), without.flags.end(), with.flags.begin()))
+  EXPECT_TRUE(
+      std::equal(without.flags.begin(), without.flags.end(), with.flags.begin()))
       << label;
   EXPECT_EQ(with.flags.back(), 0) << label;
   EXPECT_EQ(with.boundary_far, pcl::Indices{far}) << label;

@@ -431,7 +431,8 @@ TEST(MeshChecks, CrossingTrianglesIntersectOnce)
 
 TEST(MeshChecks, ClosedMeshesDoNotSelfIntersect)
 {
-  EXPECT_EQ(pcl::cocone::countSelfIntersections(tetrahedronPoints(), tetrahedron()), 0u);
+  EXPECT_EQ(pcl::cocone::countSelfIntersections(tetrahedronPoints(), tetrahedron()),
+            0u);
   EXPECT_EQ(pcl::cocone::countSelfIntersections(octahedronPoints(), octahedron()), 0u);
   Points torus = torusPoints(24, 12);
   const Triangles triangles = grid(24, 12, true, true);
@@ -545,7 +546,8 @@ TEST(MeshChecks, NonManifoldSoupsAreAccepted)
   // Three fins on one edge, and a bowtie: no intersection beyond shared features.
   const Points p = {{0, 0, 0},   {1, 0, 0},  {0.5, 1, 0}, {0.5, -1, 0.2},
                     {0.5, 0, 1}, {-1, 1, 0}, {-1, -1, 0}};
-  EXPECT_EQ(pcl::cocone::countSelfIntersections(p, {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}), 0u);
+  EXPECT_EQ(pcl::cocone::countSelfIntersections(p, {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}),
+            0u);
   EXPECT_EQ(pcl::cocone::countSelfIntersections(p, {{0, 1, 2}, {0, 5, 6}}), 0u);
 }
 

@@ -140,7 +140,7 @@ bruteForceOverlapping(const std::vector<Box>& boxes, const Box& query)
 TEST(BoxGrid, TouchingBoxesMeetAndSeparatedOnesDoNot)
 {
   const Box unit{Vector(0, 0, 0), Vector(1, 1, 1)};
-  EXPECT_FALSE(boxesApart(unit, {Vector(1, 1, 1), Vector(2, 2, 2)})); // a corner
+  EXPECT_FALSE(boxesApart(unit, {Vector(1, 1, 1), Vector(2, 2, 2)}));      // a corner
   EXPECT_FALSE(boxesApart(unit, {Vector(1, 0.5, -3), Vector(5, 0.6, 3)})); // a face
   EXPECT_TRUE(boxesApart(unit, {Vector(1 + 1e-12, 0, 0), Vector(2, 1, 1)}));
   EXPECT_TRUE(boxesApart(unit, {Vector(0, 0, -2), Vector(1, 1, -1e-12)}));
@@ -328,7 +328,7 @@ TEST(LeastAreaFill, RandomSkewLoopsGetTheLeastArea)
                           std::sin(angle) + jitter(random), jitter(random));
       loop.push_back(static_cast<std::uint32_t>(m - 1 - k)); // any numbering
     }
-    std::set<std::pair<std::uint32_t, std::uint32_t> > edges; // a few diagonals taken
+    std::set<std::pair<std::uint32_t, std::uint32_t>> edges; // a few diagonals taken
     for (int e = 0; e < trial % 3; ++e) {
       const auto a = static_cast<std::uint32_t>(random() % m);
       const auto b = static_cast<std::uint32_t>((a + 2 + random() % (m - 3)) % m);
@@ -396,7 +396,7 @@ TEST(LeastAreaFill, ObstaclesAreAvoidedOrNamed)
   points.push_back({6, 5, 5});
   points.push_back({5, 6, 5});
   obstacles.push_back({far, far + 1, far + 2}); // in the way of nothing
-  for (const TriangleIndices& t : larger) // the test's premise
+  for (const TriangleIndices& t : larger)       // the test's premise
     ASSERT_FALSE(pcl::cocone::trianglesIntersect(points, t, obstacles[0]));
   ASSERT_TRUE(pcl::cocone::trianglesIntersect(points, smaller[0], obstacles[0]));
   ASSERT_TRUE(
@@ -626,7 +626,7 @@ TEST(Candidates, LidsOverTrueHolesNearBoundarySamplesAreRemoved)
     return std::vector<std::uint8_t>(states.begin() + lid_first, states.end());
   };
   const std::vector<std::uint8_t> kept = {kCandidate, kCandidate},
-                                   rejected = {kRejected, kRejected};
+                                  rejected = {kRejected, kRejected};
   std::vector<std::uint8_t> boundary(grid.points.size(), 0);
   std::size_t removed = 0;
   EXPECT_EQ(lid_states(grid.removeLids(boundary, 2, removed)), kept);
@@ -816,7 +816,7 @@ struct OctahedronWithHole
   explicit OctahedronWithHole(const std::vector<TriangleIndices>& candidates = {},
                               const Points& extra_points = {},
                               std::vector<TriangleIndices> in_mesh = {})
-      : points(withExtra(extra_points))
+    : points(withExtra(extra_points))
   {
     std::vector<TriangleIndices> faces = octahedronFaces();
     const auto hole = std::find_if(faces.begin(), faces.end(), isHoleFace);
@@ -972,8 +972,8 @@ TEST(Walk, StepNeverFoldsBackNorTurnsOver)
 
 TEST(Pinches, TheLargestFanStays)
 {
-  const Points points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
-                         {-1, 0, 0.5}, {-1, -1, 0.5}};
+  const Points points = {{0, 0, 0}, {1, 0, 0},    {1, 1, 0},
+                         {0, 1, 0}, {-1, 0, 0.5}, {-1, -1, 0.5}};
   MeshState mesh(points);
   for (const TriangleIndices& t :
        std::vector<TriangleIndices>{{0, 1, 2}, {0, 2, 3}, {0, 4, 5}})

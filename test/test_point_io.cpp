@@ -302,9 +302,9 @@ TEST_F(PointIo, HoppeA3dStreamAsWritten)
   const std::vector<float> expected = {0.5f, 0.25f, 0.125f, 1, 2, 3, -4, 50, 6};
   EXPECT_EQ(coordinates(expectSamples(file, 3)), expected);
   // The third line was where the reader used to stop ("'d' is not a number").
-  EXPECT_EQ(coordinates(expectSamples(write("d.pts", "# a\n# b\nd 0 0 0\np 1 2 3\n"),
-                                      1)),
-            (std::vector<float>{1, 2, 3}));
+  EXPECT_EQ(
+      coordinates(expectSamples(write("d.pts", "# a\n# b\nd 0 0 0\np 1 2 3\n"), 1)),
+      (std::vector<float>{1, 2, 3}));
 }
 
 TEST_F(PointIo, MalformedA3dStream)
@@ -383,8 +383,8 @@ TEST_F(PointIo, OffVerticesAndFaces)
                                              "3 0 1 2\n"
                                              "4 0 1 2 3 255 0 0\n"
                                              "3 3 2 4\n");
-  const std::vector<float> expected = {0, 0, 0, 1, 0, 0, 1, 1, 0,
-                                       0, 1, 0, 0.5f, 0.5f, 1};
+  const std::vector<float> expected = {0, 0, 0, 1, 0,    0,    1, 1,
+                                       0, 0, 1, 0, 0.5f, 0.5f, 1};
   EXPECT_EQ(coordinates(expectSamples(file, 5)), expected);
   const std::vector<pcl::Vertices> faces = expectFaces(file, 3);
   ASSERT_EQ(faces.size(), 3u);
@@ -401,8 +401,7 @@ TEST_F(PointIo, OffVariants)
   EXPECT_EQ(coordinates(expectSamples(coff, 3)),
             (std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0}));
   expectFaces(coff, 1);
-  const std::string noff =
-      write("n.off", "NOFF 2 0 0\n1 2 3 0 0 1\n4 5 6 0 1 0\n");
+  const std::string noff = write("n.off", "NOFF 2 0 0\n1 2 3 0 0 1\n4 5 6 0 1 0\n");
   EXPECT_EQ(coordinates(expectSamples(noff, 2)),
             (std::vector<float>{1, 2, 3, 4, 5, 6}));
   expectFaces(noff, 0);
@@ -533,9 +532,8 @@ TEST_F(PointIo, PlyBinaryBothByteOrders)
         write(big_endian ? "be.ply" : "le.ply", binaryPly(big_endian));
     const pcl::PCLPointCloud2 cloud = expectSamples(file, 4);
     EXPECT_TRUE(cloud.is_dense);
-    EXPECT_EQ(coordinates(cloud),
-              (std::vector<float>{0.5f, 0, 0, 1.5f, -1, 1e3f, 2.5f, -2, 2e3f, 3.5f, -3,
-                                  3e3f}));
+    EXPECT_EQ(coordinates(cloud), (std::vector<float>{0.5f, 0, 0, 1.5f, -1, 1e3f, 2.5f,
+                                                      -2, 2e3f, 3.5f, -3, 3e3f}));
     ASSERT_EQ(cloud.fields.size(), 5u);
     EXPECT_EQ(cloud.fields[3].name, "tag");
     EXPECT_EQ(cloud.fields[3].datatype, PCLPointField::UINT16);
@@ -863,8 +861,8 @@ expectFailureWithin(const std::string& path, std::size_t megabytes, bool faces =
     std::string error;
     const bool read = faces ? pcl::cocone::loadMeshFaces(path, polygons, &error)
                             : pcl::cocone::loadPointSamples(path, cloud, &error);
-    const bool refused = !read && !error.empty() &&
-                         error.find("out of memory") == std::string::npos;
+    const bool refused =
+        !read && !error.empty() && error.find("out of memory") == std::string::npos;
     ::_exit(refused ? 0 : 1);
   }
   int status = 0;
@@ -912,8 +910,9 @@ TEST_F(PointIo, PcdSizeBeyondIntIsRefused)
   for (const char* size : {"3", "16", "0", "-4", "4.0"})
     expectSamplesFailure(write(std::string("size_") + size + ".pcd",
                                std::string("VERSION 0.7\nFIELDS x y z\nSIZE 4 4 ") +
-                                   size + "\nTYPE F F F\nWIDTH 1\nHEIGHT 1\n"
-                                          "POINTS 1\nDATA ascii\n1 2 3\n"));
+                                   size +
+                                   "\nTYPE F F F\nWIDTH 1\nHEIGHT 1\n"
+                                   "POINTS 1\nDATA ascii\n1 2 3\n"));
 }
 
 TEST_F(PointIo, HeadersClaimingMoreThanTheFileHoldsAllocateNothing)
@@ -929,8 +928,8 @@ TEST_F(PointIo, HeadersClaimingMoreThanTheFileHoldsAllocateNothing)
   std::string sizes(8, '\0');
   const std::uint32_t claimed[2] = {16, 3600000000u};
   std::memcpy(&sizes[0], claimed, sizeof claimed);
-  const std::string lying = write(
-      "lying.pcd", pcd + "DATA binary_compressed\n" + sizes + std::string(16, 'a'));
+  const std::string lying = write("lying.pcd", pcd + "DATA binary_compressed\n" +
+                                                   sizes + std::string(16, 'a'));
   EXPECT_NE(expectSamplesFailure(lying).find("too short"), std::string::npos);
   expectFailureWithin(lying, 256);
   // More than the 4 GiB a cloud can describe.
@@ -965,14 +964,17 @@ TEST_F(PointIo, MalformedCountsAreErrors)
   expectSamplesFailure(write("element.ply", ply + points));
   const std::string pcd_fields = "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
                                  "COUNT 1 1 1\n";
-  expectSamplesFailure(write("width.pcd", pcd_fields + "WIDTH 3 3\nHEIGHT 1\n"
-                                                       "POINTS 3\nDATA ascii\n" +
+  expectSamplesFailure(write("width.pcd", pcd_fields +
+                                              "WIDTH 3 3\nHEIGHT 1\n"
+                                              "POINTS 3\nDATA ascii\n" +
                                               points));
-  expectSamplesFailure(write("points.pcd", pcd_fields + "WIDTH 3\nHEIGHT 1\n"
-                                                        "POINTS 3 x\nDATA ascii\n" +
+  expectSamplesFailure(write("points.pcd", pcd_fields +
+                                               "WIDTH 3\nHEIGHT 1\n"
+                                               "POINTS 3 x\nDATA ascii\n" +
                                                points));
-  expectSamplesFailure(write("data.pcd", pcd_fields + "WIDTH 3\nHEIGHT 1\n"
-                                                      "POINTS 3\nDATA ascii binary\n" +
+  expectSamplesFailure(write("data.pcd", pcd_fields +
+                                             "WIDTH 3\nHEIGHT 1\n"
+                                             "POINTS 3\nDATA ascii binary\n" +
                                              points));
   expectSamplesFailure(write("count.pcd", "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\n"
                                           "TYPE F F F\nCOUNT 1 1 1.5\nWIDTH 1\n"
@@ -1008,8 +1010,11 @@ isUtf8(const std::string& text)
   std::size_t i = 0;
   while (i < text.size()) {
     const auto c = static_cast<unsigned char>(text[i]);
-    std::size_t length = c < 0x80 ? 1 : (c >> 5) == 6 ? 2 : (c >> 4) == 14 ? 3
-                                    : (c >> 3) == 30  ? 4 : 0;
+    std::size_t length = c < 0x80         ? 1
+                         : (c >> 5) == 6  ? 2
+                         : (c >> 4) == 14 ? 3
+                         : (c >> 3) == 30 ? 4
+                                          : 0;
     if (length == 0 || i + length > text.size())
       return false;
     std::uint32_t code = length == 1 ? c : c & (0x7f >> length);
@@ -1029,9 +1034,10 @@ isUtf8(const std::string& text)
 
 TEST_F(PointIo, MessagesAreUtf8)
 {
-  const std::string type = expectSamplesFailure(
-      write("type.ply", "ply\nformat ascii 1.0\nelement vertex 1\n"
-                        "property fl\xff\xfe" "at x\nend_header\n1\n"));
+  const std::string type =
+      expectSamplesFailure(write("type.ply", "ply\nformat ascii 1.0\nelement vertex 1\n"
+                                             "property fl\xff\xfe"
+                                             "at x\nend_header\n1\n"));
   EXPECT_TRUE(isUtf8(type)) << type;
   EXPECT_NE(type.find("'fl\\xff\\xfeat'"), std::string::npos) << type;
   // Valid UTF-8 in a file stays as it is; a sequence cut by the excerpt is escaped.
@@ -1040,8 +1046,8 @@ TEST_F(PointIo, MessagesAreUtf8)
   const std::string cut = expectSamplesFailure(
       write("cut.xyz", "1 2 " + std::string(23, 'a') + "\xe2\x82\xac\n"));
   EXPECT_TRUE(isUtf8(cut)) << cut;
-  for (const char* bytes : {"\x80", "\xc0\xaf", "\xed\xa0\x80", "\xf4\x90\x80\x80",
-                            "\xe2\x82", "\xff"}) {
+  for (const char* bytes :
+       {"\x80", "\xc0\xaf", "\xed\xa0\x80", "\xf4\x90\x80\x80", "\xe2\x82", "\xff"}) {
     const std::string error =
         expectSamplesFailure(write("bytes.obj", std::string("v 1 2 ") + bytes + "\n"));
     EXPECT_TRUE(isUtf8(error)) << error;
@@ -1116,8 +1122,7 @@ const Names xyz_names = {"x", "y", "z"};
 const Names normal_names = {"x", "y", "z", "nx", "ny", "nz"};
 
 INSTANTIATE_TEST_SUITE_P(
-    SharedData,
-    PointIoData,
+    SharedData, PointIoData,
     ::testing::Values(
         DataCase{"bun_zipper_35947.ply", 35947, 1, 69451,
                  Names{"x", "y", "z", "confidence", "intensity"}},
@@ -1179,8 +1184,8 @@ TEST(PointIoDataDetails, TableSceneKeepsNanPoints)
   const std::vector<float> xyz = coordinates(cloud);
   std::size_t finite = 0;
   for (std::size_t i = 0; i + 2 < xyz.size(); i += 3)
-    finite += std::isfinite(xyz[i]) && std::isfinite(xyz[i + 1]) &&
-              std::isfinite(xyz[i + 2]);
+    finite +=
+        std::isfinite(xyz[i]) && std::isfinite(xyz[i + 1]) && std::isfinite(xyz[i + 2]);
   EXPECT_EQ(finite, 209280u); // as the data README counts them
 }
 

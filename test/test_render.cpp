@@ -67,9 +67,9 @@ void
 icosphere(int levels, std::vector<Vec>& vertices, std::vector<Tri>& triangles)
 {
   const double t = (1 + std::sqrt(5.0)) / 2;
-  vertices = {{-1, t, 0}, {1, t, 0},   {-1, -t, 0}, {1, -t, 0},
-              {0, -1, t}, {0, 1, t},   {0, -1, -t}, {0, 1, -t},
-              {t, 0, -1}, {t, 0, 1},   {-t, 0, -1}, {-t, 0, 1}};
+  vertices = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+              {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+              {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
   for (Vec& v : vertices)
     v = unit(v);
   triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
@@ -106,8 +106,7 @@ icosphere(int levels, std::vector<Vec>& vertices, std::vector<Tri>& triangles)
 /** The body that OFF and ASCII PLY share: a line "x y z" per vertex, then a line
  * "3 a b c" per triangle. */
 void
-writeMeshBody(std::ostream& out,
-              const std::vector<Vec>& vertices,
+writeMeshBody(std::ostream& out, const std::vector<Vec>& vertices,
               const std::vector<Tri>& triangles)
 {
   for (const Vec& v : vertices)
@@ -219,11 +218,21 @@ readPng(const fs::path& path)
       const int c = i >= channels ? previous[i - channels] : 0;
       int value = 0;
       switch (filter) {
-      case 0: value = x; break;
-      case 1: value = x + a; break;
-      case 2: value = x + b; break;
-      case 3: value = x + (a + b) / 2; break;
-      case 4: value = x + paeth(a, b, c); break;
+      case 0:
+        value = x;
+        break;
+      case 1:
+        value = x + a;
+        break;
+      case 2:
+        value = x + b;
+        break;
+      case 3:
+        value = x + (a + b) / 2;
+        break;
+      case 4:
+        value = x + paeth(a, b, c);
+        break;
       default:
         image.error = "unknown filter type " + std::to_string(filter);
         image.pixels.clear();
@@ -308,8 +317,8 @@ protected:
         << vertices.size() << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS "
         << vertices.size() << "\nDATA ascii\n";
     for (const Vec& v : vertices)
-      pcd << v[0] << " " << v[1] << " " << v[2] << " " << (std::abs(v[1]) < 0.15 ? 1 : 0)
-          << "\n";
+      pcd << v[0] << " " << v[1] << " " << v[2] << " "
+          << (std::abs(v[1]) < 0.15 ? 1 : 0) << "\n";
     writeText("flagged.pcd", pcd.str());
 
     std::ostringstream xyz;

@@ -61,8 +61,7 @@ private:
 };
 
 void
-boundingBox(const std::vector<Eigen::Vector3d>& points,
-            Eigen::Vector3d& lo,
+boundingBox(const std::vector<Eigen::Vector3d>& points, Eigen::Vector3d& lo,
             Eigen::Vector3d& hi)
 {
   lo = hi = points.front();
@@ -86,7 +85,7 @@ class Nearest
 {
 public:
   Nearest(const std::vector<Eigen::Vector3d>& points, double cell)
-  : points_(points), cell_(cell)
+    : points_(points), cell_(cell)
   {
     boundingBox(points, lo_, hi_);
     dims_ = ((hi_ - lo_) / cell_).array().floor().cast<int>() + 1;
@@ -145,8 +144,7 @@ private:
 };
 
 class Shapes : public ::testing::TestWithParam<ShapeCase>
-{
-};
+{};
 
 std::string
 caseName(const ::testing::TestParamInfo<ShapeCase>& info)
@@ -224,8 +222,7 @@ TEST_P(Shapes, NormalsAreUnitAndNormal)
 
 /** The shapes sampled with the same density everywhere. */
 class UniformShapes : public Shapes
-{
-};
+{};
 
 std::vector<ShapeCase>
 uniformCases()
@@ -532,9 +529,7 @@ TEST(ShapeFeatureSize, SphereAndTorus)
 }
 
 INSTANTIATE_TEST_SUITE_P(All, Shapes, ::testing::ValuesIn(kCases), caseName);
-INSTANTIATE_TEST_SUITE_P(All,
-                         UniformShapes,
-                         ::testing::ValuesIn(uniformCases()),
+INSTANTIATE_TEST_SUITE_P(All, UniformShapes, ::testing::ValuesIn(uniformCases()),
                          caseName);
 
 } // namespace

@@ -96,8 +96,9 @@ TEST(StatusGuard, ExceptionsBecomeInternalErrorsNamingTheStage)
 {
   using pcl::cocone::detail::runGuarded;
   std::string message;
-  EXPECT_EQ(runGuarded("stitching", &message, []() -> Status { throw std::bad_alloc(); }),
-            Status::internal_error);
+  EXPECT_EQ(
+      runGuarded("stitching", &message, []() -> Status { throw std::bad_alloc(); }),
+      Status::internal_error);
   EXPECT_EQ(message, "out of memory during stitching");
   EXPECT_EQ(runGuarded("the walk", &message,
                        []() -> Status { throw std::runtime_error("no seed"); }),
@@ -110,7 +111,8 @@ TEST(StatusGuard, ExceptionsBecomeInternalErrorsNamingTheStage)
   EXPECT_EQ(runGuarded("the reconstruction", &message,
                        []() -> Status {
                          throw pcl::cocone::detail::StageFailure{
-                             Status::internal_error, "out of memory during boundary detection"};
+                             Status::internal_error,
+                             "out of memory during boundary detection"};
                        }),
             Status::internal_error);
   EXPECT_EQ(message, "out of memory during boundary detection");
@@ -182,23 +184,24 @@ TEST(StatusGuard, EveryCoreEntryTurnsOutOfMemoryIntoAStatus)
   message.clear();
   {
     RefuseLargeBlocks refuse;
-    EXPECT_EQ(pcl::cocone::relaxDecimatedSample(voronoi, fixed, 3, 1, kept, moves,
-                                                &message),
-              Status::internal_error);
+    EXPECT_EQ(
+        pcl::cocone::relaxDecimatedSample(voronoi, fixed, 3, 1, kept, moves, &message),
+        Status::internal_error);
   }
   std::cout << "[ measured ] relaxDecimatedSample(): " << message << std::endl;
   EXPECT_TRUE(saysOutOfMemory(message)) << message;
   EXPECT_EQ(kept, kept_before);
 
-  ASSERT_EQ(pcl::cocone::detectBoundarySamples(voronoi, pcl::cocone::BoundaryParameters(),
-                                               flags),
+  ASSERT_EQ(pcl::cocone::detectBoundarySamples(
+                voronoi, pcl::cocone::BoundaryParameters(), flags),
             Status::ok);
   pcl::cocone::DecimationLevels levels;
   message.clear();
   {
     RefuseLargeBlocks refuse;
-    EXPECT_EQ(pcl::cocone::decimate(std::move(voronoi), pcl::cocone::DecimationParameters(),
-                                    flags, levels, nullptr, &message),
+    EXPECT_EQ(pcl::cocone::decimate(std::move(voronoi),
+                                    pcl::cocone::DecimationParameters(), flags, levels,
+                                    nullptr, &message),
               Status::internal_error);
   }
   std::cout << "[ measured ] decimate(): " << message << std::endl;

@@ -34,9 +34,9 @@ using Args = std::vector<std::string>;
 using pcl::cocone::test::expectOneLineFailure;
 using pcl::cocone::test::expectSuccess;
 using pcl::cocone::test::readText;
-using pcl::cocone::test::shellQuote;
 using pcl::cocone::test::runTool;
 using pcl::cocone::test::sampleTrefoilKnot;
+using pcl::cocone::test::shellQuote;
 using pcl::cocone::test::ToolRun;
 
 const std::string kBoundary = "pcl_boundary_sample_estimation";
@@ -305,7 +305,7 @@ TEST_F(Tools, HelpListsEveryOptionWithDefaultAndRange)
       for (const std::string& name : names)
         EXPECT_NE(r.out.find("  " + name + " "), std::string::npos) << name;
       EXPECT_NE(r.out.find("radians"), std::string::npos);
-      EXPECT_NE(r.out.find("(0, 10]"), std::string::npos); // rho's range
+      EXPECT_NE(r.out.find("(0, 10]"), std::string::npos);   // rho's range
       EXPECT_NE(r.out.find("(0, pi/2)"), std::string::npos); // theta's range
       EXPECT_NE(r.out.find("default pi/8"), std::string::npos);
     }
@@ -528,10 +528,12 @@ TEST_F(Tools, ReconstructionOfTooSparseCloudSaysWhy)
   };
 
   // 1000 samples: a few triangles, and a note on stdout.
-  const ToolRun some = run(kReconstruction, {knotFile(1000), path("knot1000.ply").string()});
+  const ToolRun some =
+      run(kReconstruction, {knotFile(1000), path("knot1000.ply").string()});
   expectSuccess(some);
   EXPECT_NE(some.out.find("note: "), std::string::npos) << some.out;
-  EXPECT_NE(some.out.find("boundary samples: the cloud is too sparse"), std::string::npos)
+  EXPECT_NE(some.out.find("boundary samples: the cloud is too sparse"),
+            std::string::npos)
       << some.out;
   const Summary s = meshSummary(some.out);
   ASSERT_TRUE(s.found) << some.out;
@@ -545,14 +547,14 @@ TEST_F(Tools, ReconstructionOfTooSparseCloudSaysWhy)
   // Extreme parameter values flag every sample of a well-sampled cloud: the reason
   // names them, not the cloud.
   const std::string dense = knotFile(20000);
-  const ToolRun alpha = run(kReconstruction, {dense, path("knot_alpha.ply").string(),
-                                              "-alpha", "0.001"});
+  const ToolRun alpha =
+      run(kReconstruction, {dense, path("knot_alpha.ply").string(), "-alpha", "0.001"});
   const std::string alpha_text = alpha.out + alpha.err;
   EXPECT_NE(alpha_text.find("with -alpha 0.001 (default 0.52"), std::string::npos)
       << alpha_text;
   EXPECT_EQ(alpha_text.find("too sparse"), std::string::npos) << alpha_text;
-  const ToolRun rho = run(kReconstruction, {dense, path("knot_rho.ply").string(),
-                                            "-rho", "0.001"});
+  const ToolRun rho =
+      run(kReconstruction, {dense, path("knot_rho.ply").string(), "-rho", "0.001"});
   const std::string rho_text = rho.out + rho.err;
   EXPECT_NE(rho_text.find("with -rho 0.001 (default 0.99)"), std::string::npos)
       << rho_text;
@@ -579,8 +581,9 @@ TEST_F(Tools, ProgressShowsOnATerminalOnly)
     const fs::path log = path("logs") / ("terminal_" + tool);
     const std::string command =
         (fs::path(kToolDir) / tool).string() + " " + shellQuote(input) + " " +
-        shellQuote(path("terminal_" + tool + (tool == kReconstruction ? ".ply" : ".pcd"))
-                       .string());
+        shellQuote(
+            path("terminal_" + tool + (tool == kReconstruction ? ".ply" : ".pcd"))
+                .string());
     ASSERT_EQ(std::system(("script -qec " + shellQuote(command) + " /dev/null > " +
                            shellQuote(log.string()) + " 2>&1")
                               .c_str()),
@@ -589,9 +592,10 @@ TEST_F(Tools, ProgressShowsOnATerminalOnly)
     const std::string shown = readText(log);
     EXPECT_NE(shown.find("%\b"), std::string::npos) << tool << ": " << shown;
     EXPECT_NE(shown.find("[done, "), std::string::npos) << tool << ": " << shown;
-    const ToolRun piped =
-        run(tool, {input, path("piped_" + tool + (tool == kReconstruction ? ".ply" : ".pcd"))
-                              .string()});
+    const ToolRun piped = run(
+        tool,
+        {input,
+         path("piped_" + tool + (tool == kReconstruction ? ".ply" : ".pcd")).string()});
     expectSuccess(piped);
     EXPECT_EQ(piped.out.find('\b'), std::string::npos) << tool << ": " << piped.out;
   }
@@ -640,8 +644,9 @@ TEST_F(Tools, ReconstructionOptionsAreAcceptedAndVerboseShowsTheStages)
   EXPECT_NE(r.out.find("[pcl::CoconeReconstruction::reconstruct]"), std::string::npos);
   EXPECT_TRUE(meshSummary(r.out).found);
 
-  const ToolRun cocone = run(kReconstruction, {path("sphere.xyz").string(),
-                                           path("plain.obj").string(), "-no_boundary"});
+  const ToolRun cocone =
+      run(kReconstruction,
+          {path("sphere.xyz").string(), path("plain.obj").string(), "-no_boundary"});
   expectSuccess(cocone);
   EXPECT_TRUE(meshSummary(cocone.out).closed);
 }
@@ -719,7 +724,7 @@ TEST_F(Tools, FileNamesWithSpacesWork)
   fs::copy_file(path("sphere.xyz"), path("my sphere.xyz"),
                 fs::copy_options::overwrite_existing);
   const ToolRun r = run(kDecimation, {path("my sphere.xyz").string(),
-                                  path("my decimated sphere.pcd").string()});
+                                      path("my decimated sphere.pcd").string()});
   expectSuccess(r);
   EXPECT_TRUE(fs::exists(path("my decimated sphere.pcd")));
 }
@@ -818,9 +823,8 @@ TEST_F(Tools, MissingOrUnreadableInputFails)
     SCOPED_TRACE(tool);
     const std::string output =
         path(tool == kReconstruction ? "i.ply" : "i.pcd").string();
-    for (const std::string input :
-         {"missing.xyz", "folder.xyz", "folder.pcd", "garbage.xyz", "garbage.pcd",
-          "empty.xyz"}) {
+    for (const std::string input : {"missing.xyz", "folder.xyz", "folder.pcd",
+                                    "garbage.xyz", "garbage.pcd", "empty.xyz"}) {
       SCOPED_TRACE(input);
       // The reader's reason names the file.
       expectOneLineFailure(run(tool, {path(input).string(), output}), input);

@@ -44,7 +44,8 @@ class Uniform
 {
 public:
   explicit Uniform(std::uint32_t seed) : engine_(seed) {}
-  double operator()(double lo, double hi)
+  double
+  operator()(double lo, double hi)
   {
     return lo + (hi - lo) * (engine_() * (1.0 / 4294967296.0));
   }
@@ -211,14 +212,14 @@ TEST(VoronoiCocone, CenteredPointsPlusOffsetReproduceTheInput)
       // One rounding in p - offset and one in + offset: a few ulps of |p|.
       const double error = (centered[i] + voronoi.offset() - points[i]).norm();
       const double ulp = std::numeric_limits<double>::epsilon() * points[i].norm();
-      worst
-          = std::max(worst, error / std::max(ulp, std::numeric_limits<double>::min()));
+      worst =
+          std::max(worst, error / std::max(ulp, std::numeric_limits<double>::min()));
       sum += centered[i];
     }
     // The centred points average to zero up to the rounding of the subtraction.
     const double centroid_of_centered = sum.norm() / static_cast<double>(points.size());
-    const double offset_ulp = std::numeric_limits<double>::epsilon()
-                              * std::max(1.0, voronoi.offset().norm());
+    const double offset_ulp =
+        std::numeric_limits<double>::epsilon() * std::max(1.0, voronoi.offset().norm());
     std::cout << "[ measured ] shift " << shift.transpose()
               << ": largest |centered + offset - input| = " << worst
               << " ulps of |input|, |centroid of centered| = " << centroid_of_centered
@@ -242,15 +243,15 @@ TEST(VoronoiCocone, LargeCoordinatesGiveTheSameGeometry)
   double worst_angle = 0, worst_height = 0, worst_radius = 0;
   std::size_t infinity_mismatch = 0;
   for (SampleIndex i = 0; i < sphere.points.size(); ++i) {
-    const double cosine
-        = std::min(1.0, std::max(-1.0, near.poleVector(i).dot(far.poleVector(i))));
+    const double cosine =
+        std::min(1.0, std::max(-1.0, near.poleVector(i).dot(far.poleVector(i))));
     worst_angle = std::max(worst_angle, std::acos(cosine) * 180 / kPi);
-    worst_height
-        = std::max(worst_height, relativeDifference(near.height(i), far.height(i)));
+    worst_height =
+        std::max(worst_height, relativeDifference(near.height(i), far.height(i)));
     worst_radius = std::max(
         worst_radius, relativeDifference(near.coconeRadius(i), far.coconeRadius(i)));
-    infinity_mismatch
-        += near.positivePoleAtInfinity(i) != far.positivePoleAtInfinity(i);
+    infinity_mismatch +=
+        near.positivePoleAtInfinity(i) != far.positivePoleAtInfinity(i);
   }
   std::cout
       << "[ measured ] sphere at (5e5, 4e6, 100) vs origin: largest pole-vector angle "
@@ -277,8 +278,8 @@ bruteForceHullVertices(const Points& points)
       for (std::size_t c = b + 1; c < n; ++c) {
         if (on_hull[a] && on_hull[b] && on_hull[c])
           continue;
-        const Eigen::Vector3d normal
-            = (points[b] - points[a]).cross(points[c] - points[a]);
+        const Eigen::Vector3d normal =
+            (points[b] - points[a]).cross(points[c] - points[a]);
         bool above = false, below = false;
         for (std::size_t d = 0; d < n && !(above && below); ++d) {
           if (d == a || d == b || d == c)
@@ -352,8 +353,8 @@ TEST(VoronoiCocone, HeightsEqualTheLocalFeatureSize)
       worst_norm = std::max(worst_norm, std::abs(voronoi.poleVector(i).norm() - 1));
       normal_angles.push_back(
           std::acos(
-              std::min(1.0, std::abs(voronoi.poleVector(i).dot(shape.normals[i]))))
-          * 180 / kPi);
+              std::min(1.0, std::abs(voronoi.poleVector(i).dot(shape.normals[i])))) *
+          180 / kPi);
     }
     const double median_error = median(errors);
     std::cout << "[ measured ] " << shape.name
@@ -384,9 +385,9 @@ TEST(VoronoiCocone, MarkedTrianglesAndIncidenceListsAgree)
   ASSERT_FALSE(triangles.empty());
   const std::size_t n = points.size();
 
-  std::vector<std::vector<std::uint32_t> > containing(n);
-  std::vector<std::set<SampleIndex> > marked_neighbours(n);
-  std::set<std::array<SampleIndex, 3> > distinct;
+  std::vector<std::vector<std::uint32_t>> containing(n);
+  std::vector<std::set<SampleIndex>> marked_neighbours(n);
+  std::set<std::array<SampleIndex, 3>> distinct;
   for (std::uint32_t t = 0; t < triangles.size(); ++t) {
     const MarkedTriangle& triangle = triangles[t];
     EXPECT_NE(triangle.marked_by, 0) << "triangle " << t;
@@ -437,15 +438,15 @@ TEST(VoronoiCocone, DelaunayNeighboursAreTheEdgesOfTheTriangulation)
   const auto expectedLists = [](const VoronoiCocone& voronoi) {
     std::vector<SampleIndex> all(voronoi.size());
     std::iota(all.begin(), all.end(), 0u);
-    std::vector<std::array<SampleIndex, 3> > triangles;
+    std::vector<std::array<SampleIndex, 3>> triangles;
     voronoi.delaunayTrianglesAmong(all, triangles);
-    std::vector<std::set<SampleIndex> > edges(voronoi.size());
+    std::vector<std::set<SampleIndex>> edges(voronoi.size());
     for (const auto& t : triangles)
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b)
           if (a != b)
             edges[t[a]].insert(t[b]);
-    std::vector<std::vector<SampleIndex> > lists(voronoi.size());
+    std::vector<std::vector<SampleIndex>> lists(voronoi.size());
     for (SampleIndex i = 0; i < voronoi.size(); ++i) {
       const std::set<SampleIndex>& of = edges[voronoi.representative(i)];
       lists[i].assign(of.begin(), of.end());
@@ -454,7 +455,7 @@ TEST(VoronoiCocone, DelaunayNeighboursAreTheEdgesOfTheTriangulation)
   };
   const auto lookedUp = [](const VoronoiCocone& voronoi, SampleIndex first,
                            SampleIndex step) {
-    std::vector<std::vector<SampleIndex> > lists(voronoi.size());
+    std::vector<std::vector<SampleIndex>> lists(voronoi.size());
     for (SampleIndex i = first; i < voronoi.size(); i += step)
       voronoi.delaunayNeighbours(i, lists[i]);
     return lists;
@@ -465,7 +466,7 @@ TEST(VoronoiCocone, DelaunayNeighboursAreTheEdgesOfTheTriangulation)
   torus.push_back(torus[700]);
   VoronoiCocone big;
   ASSERT_EQ(big.compute(torus), Status::ok) << big.errorMessage();
-  const std::vector<std::vector<SampleIndex> > expected = expectedLists(big);
+  const std::vector<std::vector<SampleIndex>> expected = expectedLists(big);
   EXPECT_EQ(lookedUp(big, 0, 1), expected);
   EXPECT_FALSE(expected[torus.size() - 1].empty());
   EXPECT_EQ(expected[torus.size() - 1], expected[700]);
@@ -476,7 +477,7 @@ TEST(VoronoiCocone, DelaunayNeighboursAreTheEdgesOfTheTriangulation)
   EXPECT_EQ(lookedUp(small, 0, 1), expectedLists(small));
   EXPECT_EQ(lookedUp(big, 0, 1), expected);
 
-  std::vector<std::vector<SampleIndex> > even, odd;
+  std::vector<std::vector<SampleIndex>> even, odd;
   std::thread other([&] { odd = lookedUp(big, 1, 2); });
   even = lookedUp(big, 0, 2);
   other.join();
@@ -492,8 +493,9 @@ TEST(VoronoiCocone, DelaunayQueriesAgreeWithAnIndependentTriangulation)
 {
   using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
   using Vertex = CGAL::Triangulation_vertex_base_with_info_3<SampleIndex, Kernel>;
-  using Triangulation = CGAL::Delaunay_triangulation_3<
-      Kernel, CGAL::Triangulation_data_structure_3<Vertex>>;
+  using Triangulation =
+      CGAL::Delaunay_triangulation_3<Kernel,
+                                     CGAL::Triangulation_data_structure_3<Vertex>>;
 
   Points points = sampleTorus(2000, 5).points;
   const Points cap = sampleHemisphere(300, 6).points; // a second part, its own hull
@@ -528,11 +530,13 @@ TEST(VoronoiCocone, DelaunayQueriesAgreeWithAnIndependentTriangulation)
   std::vector<SampleIndex> neighbours;
   for (SampleIndex i = 0; i < points.size(); ++i) {
     voronoi.delaunayNeighbours(i, neighbours);
-    EXPECT_EQ(neighbours, expected_neighbours[voronoi.representative(i)]) << "sample " << i;
+    EXPECT_EQ(neighbours, expected_neighbours[voronoi.representative(i)])
+        << "sample " << i;
   }
 
   std::vector<std::array<SampleIndex, 3>> expected_triangles;
-  for (auto f = reference.finite_facets_begin(); f != reference.finite_facets_end(); ++f) {
+  for (auto f = reference.finite_facets_begin(); f != reference.finite_facets_end();
+       ++f) {
     std::array<SampleIndex, 3> t;
     for (int k = 0, m = 0; k < 4; ++k)
       if (k != f->second)
@@ -568,16 +572,16 @@ TEST(VoronoiCocone, DelaunayTrianglesAmongASmallSet)
     const Points points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 0}};
     VoronoiCocone voronoi;
     ASSERT_EQ(voronoi.compute(points), Status::ok) << voronoi.errorMessage();
-    std::vector<std::array<SampleIndex, 3> > triangles;
+    std::vector<std::array<SampleIndex, 3>> triangles;
     voronoi.delaunayTrianglesAmong({0, 1, 2, 3}, triangles);
-    const std::vector<std::array<SampleIndex, 3> > all
-        = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+    const std::vector<std::array<SampleIndex, 3>> all = {
+        {0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
     EXPECT_EQ(triangles, all);
     voronoi.delaunayTrianglesAmong({3, 1, 2}, triangles);
-    EXPECT_EQ(triangles, (std::vector<std::array<SampleIndex, 3> >{{1, 2, 3}}));
+    EXPECT_EQ(triangles, (std::vector<std::array<SampleIndex, 3>>{{1, 2, 3}}));
     // The duplicate 4 stands for 0.
     voronoi.delaunayTrianglesAmong({4, 2, 1}, triangles);
-    EXPECT_EQ(triangles, (std::vector<std::array<SampleIndex, 3> >{{0, 1, 2}}));
+    EXPECT_EQ(triangles, (std::vector<std::array<SampleIndex, 3>>{{0, 1, 2}}));
     voronoi.delaunayTrianglesAmong({0, 1}, triangles);
     EXPECT_TRUE(triangles.empty());
   }
@@ -595,9 +599,9 @@ TEST(VoronoiCocone, DelaunayTrianglesAmongASmallSet)
   std::vector<SampleIndex> shuffled = patch;
   std::reverse(shuffled.begin(), shuffled.end());
   shuffled.push_back(patch.front()); // repeats are harmless
-  std::vector<std::array<SampleIndex, 3> > triangles;
+  std::vector<std::array<SampleIndex, 3>> triangles;
   voronoi.delaunayTrianglesAmong(shuffled, triangles);
-  std::set<std::array<SampleIndex, 3> > seen;
+  std::set<std::array<SampleIndex, 3>> seen;
   std::vector<SampleIndex> neighbours;
   for (const auto& t : triangles) {
     EXPECT_TRUE(t[0] < t[1] && t[1] < t[2]) << "vertices not ascending";
@@ -788,8 +792,8 @@ struct Differences
 {
   std::size_t values = 0; ///< per-sample values (poles, pole vector, height, radius)
   double largest_relative = 0; ///< the largest relative difference among them
-  std::size_t triangles
-      = 0; ///< marked triangles (vertex sets with their marks) not in both
+  std::size_t triangles =
+      0; ///< marked triangles (vertex sets with their marks) not in both
 };
 
 /** A marked triangle as (sorted vertices, marks in that order). */
@@ -822,8 +826,8 @@ compare(const VoronoiCocone& a, const VoronoiCocone& b)
     if (sameVector(x, y))
       return;
     ++d.values;
-    d.largest_relative
-        = std::max(d.largest_relative, (x - y).norm() / std::max(x.norm(), y.norm()));
+    d.largest_relative =
+        std::max(d.largest_relative, (x - y).norm() / std::max(x.norm(), y.norm()));
   };
   for (SampleIndex i = 0; i < a.size(); ++i) {
     vector(a.poleVector(i), b.poleVector(i));
@@ -832,7 +836,7 @@ compare(const VoronoiCocone& a, const VoronoiCocone& b)
     value(a.height(i), b.height(i));
     value(a.coconeRadius(i), b.coconeRadius(i));
   }
-  std::set<std::pair<std::array<SampleIndex, 3>, int> > in_a, in_b;
+  std::set<std::pair<std::array<SampleIndex, 3>, int>> in_a, in_b;
   for (const MarkedTriangle& t : a.markedTriangles())
     in_a.insert(canonical(t));
   for (const MarkedTriangle& t : b.markedTriangles())
@@ -888,8 +892,8 @@ TEST(VoronoiCocone, OneThreadAndAllThreadsGiveIdenticalResults)
   for (std::size_t i = 0; i < torus.points.size(); ++i) {
     level_differences += !sameValue(levels_single.level[i], levels_parallel.level[i]);
     for (const double rho : {0.3, 0.4})
-      kept_differences
-          += (levels_single.level[i] >= rho) != (levels_parallel.level[i] >= rho);
+      kept_differences +=
+          (levels_single.level[i] >= rho) != (levels_parallel.level[i] >= rho);
   }
   std::cout << "[ measured ] decimation up to rho 0.4: " << levels_single.removals
             << " and " << levels_parallel.removals << " removals; " << level_differences

@@ -125,7 +125,8 @@ diagonalOf(const Points& points)
 class DecimationContract : public ::testing::Test
 {
 protected:
-  void SetUp() override
+  void
+  SetUp() override
   {
     shape_ = sampleTorus(3000, 21);
     cloud_ = toCloud(shape_.points);
@@ -143,8 +144,8 @@ TEST_F(DecimationContract, SubsetDeterministicAndNeverMoved)
   EXPECT_EQ(first, second);
   ASSERT_FALSE(first.empty());
   EXPECT_LT(first.size(), cloud_->size());
-  EXPECT_TRUE(std::adjacent_find(first.begin(), first.end(), std::greater_equal<>())
-              == first.end())
+  EXPECT_TRUE(std::adjacent_find(first.begin(), first.end(), std::greater_equal<>()) ==
+              first.end())
       << "indices are not strictly ascending";
   for (const pcl::index_t i : first)
     ASSERT_TRUE(i >= 0 && static_cast<std::size_t>(i) < cloud_->size());
@@ -289,8 +290,8 @@ TEST_F(DecimationContract, KeepOrganizedFillsRemovedPointsWithNaN)
     EXPECT_FALSE(output.is_dense);
     std::size_t wrong = 0, kept_points = 0;
     for (std::size_t i = 0; i < output.size(); ++i) {
-      const bool is_kept
-          = std::binary_search(kept.begin(), kept.end(), static_cast<pcl::index_t>(i));
+      const bool is_kept =
+          std::binary_search(kept.begin(), kept.end(), static_cast<pcl::index_t>(i));
       const bool returned = isFinite((*organized)[i]) && is_kept != negative;
       if (returned) {
         wrong += !sameBits(output[i], (*organized)[i]);
@@ -362,8 +363,8 @@ TEST_F(DecimationContract, DuplicatesOnlyTheFirstKept)
                   static_cast<pcl::index_t>(i));
   std::size_t later_copies = 0;
   for (std::size_t i = 0; i < cloud->size(); ++i) {
-    const pcl::index_t owner
-        = first.at(std::make_tuple((*cloud)[i].x, (*cloud)[i].y, (*cloud)[i].z));
+    const pcl::index_t owner =
+        first.at(std::make_tuple((*cloud)[i].x, (*cloud)[i].y, (*cloud)[i].z));
     if (owner == static_cast<pcl::index_t>(i))
       continue;
     ++later_copies;
@@ -506,7 +507,7 @@ decimate(const VoronoiCocone& full, double rho)
   const Points& points = full.centeredPoints();
   const std::size_t n = points.size();
   const double sin_theta = std::sin(full.getCoconeAngle());
-  std::vector<std::pair<Kernel::Point_3, std::uint32_t> > input;
+  std::vector<std::pair<Kernel::Point_3, std::uint32_t>> input;
   for (std::size_t i = 0; i < n; ++i)
     input.emplace_back(Kernel::Point_3(points[i].x(), points[i].y(), points[i].z()),
                        static_cast<std::uint32_t>(i));
@@ -527,25 +528,26 @@ decimate(const VoronoiCocone& full, double rho)
     double ratio;
     std::uint32_t sample;
     std::uint32_t version;
-    bool operator>(const Entry& other) const
+    bool
+    operator>(const Entry& other) const
     {
       return std::tie(ratio, sample) > std::tie(other.ratio, other.sample);
     }
   };
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry> > queue;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
   std::vector<std::uint32_t> version(n, 0);
   for (std::uint32_t s = 0; s < n; ++s) {
     // Sanity check of the definitions: on the full sample, r_p is VoronoiCocone's.
     const double r = coconeRadius(dt, vertex_of[s], full.poleVector(s), sin_theta);
-    const double difference
-        = r == full.coconeRadius(s)
-              ? 0
-              : std::abs(r - full.coconeRadius(s)) / full.coconeRadius(s);
-    result.largest_initial_radius_difference
-        = std::max(result.largest_initial_radius_difference, difference);
+    const double difference =
+        r == full.coconeRadius(s)
+            ? 0
+            : std::abs(r - full.coconeRadius(s)) / full.coconeRadius(s);
+    result.largest_initial_radius_difference =
+        std::max(result.largest_initial_radius_difference, difference);
     const double h = full.height(s);
-    const double q
-        = h > 0 && std::isfinite(r) ? r / h : std::numeric_limits<double>::infinity();
+    const double q =
+        h > 0 && std::isfinite(r) ? r / h : std::numeric_limits<double>::infinity();
     if (q < rho)
       queue.push({q, s, 0});
   }
@@ -752,11 +754,11 @@ reportTableRow(const Cloud::Ptr& cloud, const TableRow& paper, const std::string
   if (kept.size() != 2)
     return {0, 0};
   const double n = static_cast<double>(cloud->size());
-  const std::array<double, 2> ours
-      = {100 * (1 - kept[0].size() / n), 100 * (1 - kept[1].size() / n)};
-  const std::array<double, 2> theirs
-      = {100 * (1 - static_cast<double>(paper.kept_03) / paper.points),
-         100 * (1 - static_cast<double>(paper.kept_04) / paper.points)};
+  const std::array<double, 2> ours = {100 * (1 - kept[0].size() / n),
+                                      100 * (1 - kept[1].size() / n)};
+  const std::array<double, 2> theirs = {
+      100 * (1 - static_cast<double>(paper.kept_03) / paper.points),
+      100 * (1 - static_cast<double>(paper.kept_04) / paper.points)};
   std::cout << std::fixed << std::setprecision(1) << "[ measured ] " << label << " "
             << cloud->size() << " points: rho 0.3 keeps " << kept[0].size() << " ("
             << ours[0] << "% removed; paper " << paper.name << " " << paper.points
@@ -780,8 +782,8 @@ TEST(VoronoiDecimationData, BunnyTable2)
   PCL_COCONE_REQUIRE_DATA_FILE(path, "bun_zipper_35947.ply");
   const Cloud::Ptr cloud = loadCloud(path);
   ASSERT_EQ(cloud->size(), 35947u);
-  const std::array<double, 2> removed
-      = reportTableRow(cloud, {"BUNNY", 35947, 11171, 7747}, "bunny");
+  const std::array<double, 2> removed =
+      reportTableRow(cloud, {"BUNNY", 35947, 11171, 7747}, "bunny");
   EXPECT_NEAR(removed[0], 68.9, 10.0) << "percent removed at rho 0.3";
   EXPECT_NEAR(removed[1], 78.4, 10.0) << "percent removed at rho 0.4";
 }
@@ -1121,8 +1123,8 @@ struct TwoSided
   double hausdorff = 0; ///< symmetric Hausdorff distance, CGAL's bounded-error estimate
   double a_to_b = 0;    ///< its one-sided parts: the farthest point of a from b
   double b_to_a = 0;    ///< and the farthest point of b from a
-  double sampled
-      = 0; ///< the symmetric distance as hausdorffDistance (mesh_checks.h) estimates it
+  double sampled =
+      0; ///< the symmetric distance as hausdorffDistance (mesh_checks.h) estimates it
   double mean = 0; ///< the mean of the two one-sided mean distances (sampled)
 };
 
@@ -1157,8 +1159,8 @@ toSurfaceMesh(const Mesh& mesh, SurfaceMesh& out)
       vertex[i] = out.add_vertex(reference::Kernel::Point_3(
           mesh.points[i].x(), mesh.points[i].y(), mesh.points[i].z()));
   for (const TriangleIndices& t : mesh.triangles)
-    if (out.add_face(vertex[t[0]], vertex[t[1]], vertex[t[2]])
-        == SurfaceMesh::null_face())
+    if (out.add_face(vertex[t[0]], vertex[t[1]], vertex[t[2]]) ==
+        SurfaceMesh::null_face())
       return false;
   return !mesh.triangles.empty();
 }
@@ -1176,10 +1178,10 @@ twoSidedDistance(const Mesh& a, const Mesh& b, double diagonal,
   const std::vector<TriangleIndices> ta = canonicalOrder(a.triangles);
   const std::vector<TriangleIndices> tb = canonicalOrder(b.triangles);
   // hausdorffDistance(a.points, ta, b.points, tb), with the means as well.
-  const DistanceStats a_to_b
-      = distancesToMesh(samplePointsOnMesh(a.points, ta), b.points, tb);
-  const DistanceStats b_to_a
-      = distancesToMesh(samplePointsOnMesh(b.points, tb), a.points, ta);
+  const DistanceStats a_to_b =
+      distancesToMesh(samplePointsOnMesh(a.points, ta), b.points, tb);
+  const DistanceStats b_to_a =
+      distancesToMesh(samplePointsOnMesh(b.points, tb), a.points, ta);
   result.sampled = std::max(a_to_b.max, b_to_a.max);
   result.mean = 0.5 * (a_to_b.mean + b_to_a.mean);
   SurfaceMesh mesh_a, mesh_b;
@@ -1273,10 +1275,10 @@ compareDecimations(const Cloud::Ptr& cloud, const std::string& label, bool same_
   const Mesh uniform = reconstruct(uniform_cloud, label + " UniformSampling", false);
 
   const TwoSided to_ours = twoSidedDistance(full, ours, diagonal, label);
-  const TwoSided to_voxel
-      = twoSidedDistance(full, voxel, diagonal, label + " VoxelGrid");
-  const TwoSided to_uniform
-      = twoSidedDistance(full, uniform, diagonal, label + " UniformSampling");
+  const TwoSided to_voxel =
+      twoSidedDistance(full, voxel, diagonal, label + " VoxelGrid");
+  const TwoSided to_uniform =
+      twoSidedDistance(full, uniform, diagonal, label + " UniformSampling");
   comparison.ours = to_ours.hausdorff / diagonal;
   comparison.voxel = to_voxel.hausdorff / diagonal;
   comparison.uniform = to_uniform.hausdorff / diagonal;
@@ -1337,8 +1339,8 @@ TEST(VoronoiDecimationTopology, SphereKeepsItsTopology)
 // diagonal of each other (UniformSampling's uniform spacing suits a uniform sample).
 TEST(VoronoiDecimationTopology, TorusKeepsItsTopology)
 {
-  const Comparison c
-      = compareDecimations(toCloud(sampleTorus(6000, 62).points), "torus", true);
+  const Comparison c =
+      compareDecimations(toCloud(sampleTorus(6000, 62).points), "torus", true);
   EXPECT_LT(c.ours, 0.01);
 }
 

@@ -30,7 +30,8 @@ namespace fs = std::filesystem;
 class Writers : public ::testing::Test
 {
 protected:
-  void SetUp() override
+  void
+  SetUp() override
   {
     static std::atomic<int> counter{0};
     dir_ = fs::path(::testing::TempDir()) /
@@ -40,14 +41,19 @@ protected:
     fs::create_directories(dir_);
   }
 
-  void TearDown() override
+  void
+  TearDown() override
   {
     std::error_code ec;
     fs::permissions(dir_, fs::perms::owner_all, fs::perm_options::add, ec);
     fs::remove_all(dir_, ec);
   }
 
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string
+  path(const std::string& name) const
+  {
+    return (dir_ / name).string();
+  }
 
   fs::path dir_;
 };
@@ -61,8 +67,8 @@ contentsOf(const std::string& path)
   return text.str();
 }
 
-using Vertices = std::vector<std::array<float, 3> >;
-using Triangles = std::vector<std::array<std::uint32_t, 3> >;
+using Vertices = std::vector<std::array<float, 3>>;
+using Triangles = std::vector<std::array<std::uint32_t, 3>>;
 
 // Values whose shortest decimal form needs all nine digits, and one that is tiny.
 const Vertices kVertices = {{0.1f, -2.5f, 3.0f},

@@ -39,12 +39,14 @@ commandLine()
         "also flag K rings of cocone neighbours around the boundary samples, for a "
         "band like pcl::BoundaryEstimation's; 0 is BOUNDARY as published",
         0, "", pcl::cocone::kBandRingsRange},
-       flagOption("-no_rim_completion",
-        "flag only what BOUNDARY as published flags: a quarter to a half of the outermost "
-        "row along a rim (by default the row is completed from those flags)"),
-       flagOption("-rgb",
-        "also write an rgb field: red for boundary samples, grey for the others, so "
-        "that pcl_viewer shows them as in the paper's figure 4"),
+       flagOption(
+           "-no_rim_completion",
+           "flag only what BOUNDARY as published flags: a quarter to a half of the outermost "
+           "row along a rim (by default the row is completed from those flags)"),
+       flagOption(
+           "-rgb",
+           "also write an rgb field: red for boundary samples, grey for the others, so "
+           "that pcl_viewer shows them as in the paper's figure 4"),
        threadsOption(),
        verboseOption()});
 }
@@ -104,8 +106,7 @@ compute(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLine& 
  * colours by it. */
 pcl::PCLPointCloud2
 flagFields(const pcl::PointCloud<pcl::Boundary>& flags,
-           const pcl::PCLPointCloud2& input,
-           bool rgb)
+           const pcl::PCLPointCloud2& input, bool rgb)
 {
   pcl::PCLPointCloud2 extra;
   extra.width = input.width;

@@ -41,9 +41,10 @@ commandLine()
         "a hole larger than B local sample spacings is a true boundary and stays open; "
         "smaller holes are stitched; raise it to close a scan's cut",
         2, "", pcl::cocone::kTrueBoundaryRatioRange},
-       flagOption("-no_boundary",
-        "no boundary detection: the original COCONE, for densely sampled closed "
-        "smooth surfaces only"),
+       flagOption(
+           "-no_boundary",
+           "no boundary detection: the original COCONE, for densely sampled closed "
+           "smooth surfaces only"),
        flagOption("-no_stitch", "leave every hole open"),
        threadsOption(),
        verboseOption()});
@@ -73,7 +74,8 @@ sparseNote(const pcl::CoconeReconstruction<pcl::PointXYZ>& cocone, std::string& 
   compare("-alpha", cocone.getNormalAngle(), defaults.getNormalAngle());
   if (changed.empty())
     note += ": the cloud is too sparse for boundary detection at rho " +
-            formatNumber(cocone.getRatioBound()) + "; try a larger -rho or -no_boundary";
+            formatNumber(cocone.getRatioBound()) +
+            "; try a larger -rho or -no_boundary";
   else
     note += " with " + changed +
             ": these values flag most samples; try the defaults, a larger -rho or "

@@ -40,7 +40,8 @@ using pcl::console::print_value;
 std::string program_name = "error";
 bool stage_open = false;
 bool verbose_run = false;
-// Characters of a percentage shown at the end of the open stage line (terminalProgress).
+// Characters of a percentage shown at the end of the open stage line
+// (terminalProgress).
 int progress_shown = 0;
 
 /** Erases the percentage shown at the end of the stage line, if any. */
@@ -196,8 +197,7 @@ fail(const std::string& message)
   std::exit(EXIT_FAILURE);
 }
 
-QuietPcl::QuietPcl()
-: previous_(pcl::console::getVerbosityLevel())
+QuietPcl::QuietPcl() : previous_(pcl::console::getVerbosityLevel())
 {
   if (!verbose_run)
     pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
@@ -219,26 +219,41 @@ ratioBoundOption(double default_value, const std::string& help)
 Option
 coconeAngleOption()
 {
-  return {"-theta", ValueKind::real, "T",
+  return {"-theta",
+          ValueKind::real,
+          "T",
           "cocone angle in radians: the cocone of a sample is the part of its Voronoi "
           "cell within T of the plane orthogonal to its pole vector",
-          M_PI / 8, "pi/8 = 0.3927", kCoconeAngleRange, "(0, pi/2)"};
+          M_PI / 8,
+          "pi/8 = 0.3927",
+          kCoconeAngleRange,
+          "(0, pi/2)"};
 }
 
 Option
 normalAngleOption()
 {
-  return {"-alpha", ValueKind::real, "A",
+  return {"-alpha",
+          ValueKind::real,
+          "A",
           "largest angle in radians between the pole lines of neighbouring flat "
           "samples; smaller values flag more samples near curved or sharp regions",
-          M_PI / 6, "pi/6 = 0.5236", kNormalAngleRange, "(0, pi/2]"};
+          M_PI / 6,
+          "pi/6 = 0.5236",
+          kNormalAngleRange,
+          "(0, pi/2]"};
 }
 
 Option
 threadsOption()
 {
-  return {"-threads", ValueKind::integer, "N", "number of threads", 0,
-          "0 = every core", ParameterRange{0, 4096, false, false}};
+  return {"-threads",
+          ValueKind::integer,
+          "N",
+          "number of threads",
+          0,
+          "0 = every core",
+          ParameterRange{0, 4096, false, false}};
 }
 
 Option
@@ -261,7 +276,7 @@ verboseOption()
 // ---------------------------------------------------------------------------------
 
 CommandLine::CommandLine(ToolDescription tool, std::vector<Option> options)
-: tool_(std::move(tool)), options_(std::move(options))
+  : tool_(std::move(tool)), options_(std::move(options))
 {
   program_name = tool_.program;
   for (const Option& option : options_)
@@ -466,7 +481,8 @@ computeStage(const std::string& what, const std::string& unit, const StageWork& 
     return work(reason);
   }();
   if (!count)
-    fail("computing " + what + " failed: " + (reason.empty() ? "empty result" : reason));
+    fail("computing " + what +
+         " failed: " + (reason.empty() ? "empty result" : reason));
   stage.done(*count, unit);
   return *count;
 }
@@ -586,8 +602,7 @@ saveCloud(const std::string& path, const pcl::PCLPointCloud2& cloud)
 }
 
 void
-saveMesh(const std::string& path,
-         const std::vector<std::array<float, 3>>& vertices,
+saveMesh(const std::string& path, const std::vector<std::array<float, 3>>& vertices,
          const std::vector<TriangleIndices>& triangles)
 {
   Stage stage("Saving", path);

@@ -41,8 +41,7 @@ namespace tools {
  * that the promise of one line holds for any file name or argument, and bytes that are
  * not UTF-8 are escaped (pcl::cocone::utf8Escaped). The message shows
  * even when called within a QuietPcl scope. */
-[[noreturn]] void
-fail(const std::string& message);
+[[noreturn]] void fail(const std::string& message);
 
 /** \brief Silences PCL's console while it lives, unless -v was given (to
  * CommandLine::parse): the level is set to L_ALWAYS, so that the PCL_ERROR and PCL_WARN
@@ -59,8 +58,7 @@ public:
   QuietPcl();
   ~QuietPcl();
   QuietPcl(const QuietPcl&) = delete;
-  QuietPcl&
-  operator=(const QuietPcl&) = delete;
+  QuietPcl& operator=(const QuietPcl&) = delete;
 
 private:
   pcl::console::VERBOSITY_LEVEL previous_;
@@ -79,7 +77,7 @@ enum class ValueKind
 /** \brief One command-line option. */
 struct Option
 {
-  std::string name;     ///< with its dash, e.g. "-rho"
+  std::string name; ///< with its dash, e.g. "-rho"
   ValueKind kind = ValueKind::flag;
   std::string argument; ///< placeholder in the help, e.g. "R"
   std::string help;     ///< what it does
@@ -92,32 +90,26 @@ struct Option
 };
 
 /** \brief A switch without value. */
-Option
-flagOption(const std::string& name, const std::string& help);
+Option flagOption(const std::string& name, const std::string& help);
 
 /** \name Options that mean the same in every tool (same names, ranges and help); the
  * ranges are the library's kRatioBoundRange, kCoconeAngleRange, kNormalAngleRange. */
 /** \{ */
-Option
-ratioBoundOption(double default_value, const std::string& help);
-Option
-coconeAngleOption();
-Option
-normalAngleOption();
-Option
-threadsOption();
-Option
-verboseOption();
+Option ratioBoundOption(double default_value, const std::string& help);
+Option coconeAngleOption();
+Option normalAngleOption();
+Option threadsOption();
+Option verboseOption();
 /** \} */
 
 /** \brief What a tool is, for its help text and the checks of its arguments. */
 struct ToolDescription
 {
-  std::string program;  ///< executable name
-  std::string purpose;  ///< one sentence
-  std::string output;   ///< placeholder of the output argument, e.g. "OUTPUT.pcd"
+  std::string program; ///< executable name
+  std::string purpose; ///< one sentence
+  std::string output;  ///< placeholder of the output argument, e.g. "OUTPUT.pcd"
   std::vector<std::string> output_extensions; ///< lower case, with dot
-  std::string output_help; ///< what the output file holds
+  std::string output_help;                    ///< what the output file holds
 };
 
 /** \brief Parses and validates a tool's arguments: INPUT OUTPUT and the options in any
@@ -134,8 +126,7 @@ public:
    * With -v, raises PCL's console verbosity to L_DEBUG for the whole run (QuietPcl
    * then silences nothing). Ignores SIGXFSZ, so that a write past a file size limit
    * fails with its reason instead of ending the tool (see pcl::cocone::writeFile). */
-  void
-  parse(int argc, char** argv);
+  void parse(int argc, char** argv);
 
   const std::string&
   input() const
@@ -148,30 +139,24 @@ public:
     return output_;
   }
   /** \brief The output extension, lower case, e.g. ".ply". */
-  std::string
-  outputExtension() const;
+  std::string outputExtension() const;
 
   /** \brief The value of a real or integer option (its default when not given). */
-  double
-  value(const std::string& name) const;
+  double value(const std::string& name) const;
   /** \brief The value of an integer option. */
-  unsigned
-  count(const std::string& name) const;
+  unsigned count(const std::string& name) const;
   /** \brief Whether a switch was given. */
-  bool
-  flag(const std::string& name) const;
+  bool flag(const std::string& name) const;
   bool
   verbose() const
   {
     return flag("-v");
   }
 
-  void
-  printHelp() const;
+  void printHelp() const;
 
 private:
-  const Option&
-  option(const std::string& name) const;
+  const Option& option(const std::string& name) const;
 
   ToolDescription tool_;
   std::vector<Option> options_;
@@ -193,8 +178,7 @@ public:
   Stage(const std::string& action, const std::string& object);
 
   /** \brief Closes the line: "[done, X ms : <count> <unit>]". */
-  void
-  done(std::size_t count, const std::string& unit);
+  void done(std::size_t count, const std::string& unit);
 
 private:
   pcl::console::TicToc timer_;
@@ -216,26 +200,22 @@ computeStage(const std::string& what, const std::string& unit, const StageWork& 
  * share done as a percentage at the end of the open stage line, on a terminal only;
  * empty when stdout is not a terminal or with -v, so that logs and pipes see the same
  * lines as before. Never cancels. */
-std::function<bool(double)>
-terminalProgress();
+std::function<bool(double)> terminalProgress();
 
 /** \brief Prints "<label>: <value>\n" in PCL's colours (label as info, value as value);
  * for the -v details. */
-void
-printDetail(const std::string& label, const std::string& value);
+void printDetail(const std::string& label, const std::string& value);
 
 /** \brief Prints "warning: <text>\n" (PCL's warning colour) when \a text is not empty:
- * for the classes' getWarningMessage(), which the tools' quiet PCL output would hide. */
-void
-printWarning(const std::string& text);
+ * for the classes' getWarningMessage(), which the tools' quiet PCL output would hide.
+ */
+void printWarning(const std::string& text);
 
 /** \brief A number with up to \a digits significant digits, e.g. for parameters. */
-std::string
-formatNumber(double value, int digits = 6);
+std::string formatNumber(double value, int digits = 6);
 
 /** \brief 100 * part / whole with one decimal, "0.0" for an empty whole. */
-std::string
-formatPercent(std::size_t part, std::size_t whole);
+std::string formatPercent(std::size_t part, std::size_t whole);
 
 // ---------------------------------------------------------------------------------
 // Loading and saving
@@ -243,16 +223,13 @@ formatPercent(std::size_t part, std::size_t whole);
 /** \brief Loads \a path with pcl::cocone::loadPointSamples as a timed stage, PCL's
  * console quiet (QuietPcl); fails with the reader's reason. With -v also prints the
  * fields. */
-pcl::PCLPointCloud2
-loadCloud(const std::string& path, bool verbose);
+pcl::PCLPointCloud2 loadCloud(const std::string& path, bool verbose);
 
 /** \brief The x, y, z of \a cloud (same width, height and order) for the classes. */
-pcl::PointCloud<pcl::PointXYZ>::Ptr
-toXyz(const pcl::PCLPointCloud2& cloud);
+pcl::PointCloud<pcl::PointXYZ>::Ptr toXyz(const pcl::PCLPointCloud2& cloud);
 
 /** \brief Number of points (width * height) of a cloud. */
-std::size_t
-pointCount(const pcl::PCLPointCloud2& cloud);
+std::size_t pointCount(const pcl::PCLPointCloud2& cloud);
 
 /** \brief A copy of \a cloud without the fields named in \a names (nor padding), the
  * others packed in their order; \a cloud itself when it has none of them. */
@@ -262,8 +239,7 @@ withoutFields(const pcl::PCLPointCloud2& cloud, const std::vector<std::string>& 
 /** \brief Writes \a cloud as binary PCD to \a path as a timed stage (the header of
  * pcl::PCDWriter, the data as they are); fails with a one-line reason if the file
  * cannot be written completely (a partial file is removed). */
-void
-saveCloud(const std::string& path, const pcl::PCLPointCloud2& cloud);
+void saveCloud(const std::string& path, const pcl::PCLPointCloud2& cloud);
 
 /** \brief Writes a triangle mesh to \a path as a timed stage, in the format of its
  * extension: .ply (binary little endian: float x y z, face list uchar int
@@ -271,8 +247,7 @@ saveCloud(const std::string& path, const pcl::PCLPointCloud2& cloud);
  * enough digits to read back the same floats. Fails with a one-line reason if the file
  * cannot be written completely (a partial file is removed). */
 void
-saveMesh(const std::string& path,
-         const std::vector<std::array<float, 3>>& vertices,
+saveMesh(const std::string& path, const std::vector<std::array<float, 3>>& vertices,
          const std::vector<TriangleIndices>& triangles);
 
 } // namespace tools

@@ -93,8 +93,8 @@ const std::vector<std::string> kTextOptions{"-boundary", "-camera"};
 
 /** Every option name of commandLine(), in its order (a value after a text option is
  * taken as its value unless it is one of these). */
-const std::vector<std::string> kOptionNames{"-boundary",  "-wireframe", "-width",
-                                            "-height",    "-camera",    "-azimuth",
+const std::vector<std::string> kOptionNames{"-boundary",  "-wireframe",  "-width",
+                                            "-height",    "-camera",     "-azimuth",
                                             "-elevation", "-point_size", "-v"};
 
 CommandLine
@@ -109,23 +109,31 @@ commandLine()
        "OUTPUT.png",
        {".png"},
        "the picture: 8-bit RGB PNG of W x H pixels, white background"},
-      {{"-boundary", ValueKind::flag, "B.pcd",
+      {{"-boundary",
+        ValueKind::flag,
+        "B.pcd",
         "draw the samples flagged in B's boundary_point field (one row per sample with "
         "its x y z, as pcl_boundary_sample_estimation writes it) as red markers over "
         "INPUT",
-        0, "none", {}},
+        0,
+        "none",
+        {}},
        flagOption("-wireframe", "draw the mesh's edges over its shaded surface"),
        {"-width", ValueKind::integer, "W", "image width in pixels", 640, "",
         ParameterRange{16, 8192, false, false}},
        {"-height", ValueKind::integer, "H", "image height in pixels", 480, "",
         ParameterRange{16, 8192, false, false}},
-       {"-camera", ValueKind::flag, "px,py,pz,fx,fy,fz,ux,uy,uz",
+       {"-camera",
+        ValueKind::flag,
+        "px,py,pz,fx,fy,fz,ux,uy,uz",
         "camera position, focal point and view-up vector: nine comma-separated numbers "
         "(every run prints its camera, to be reused or adjusted); -azimuth and "
         "-elevation then turn it about the focal point. Without it the camera looks "
         "along -z with +y up, turned by -azimuth and -elevation, from where INPUT "
         "fills the picture",
-        0, "fitted", {}},
+        0,
+        "fitted",
+        {}},
        {"-azimuth", ValueKind::real, "DEG",
         "turn the camera by DEG degrees about the view-up axis through the focal point "
         "(positive: towards +x from the default view)",
@@ -166,15 +174,13 @@ isHelp(const std::string& arg)
 /** argv with the values of the text options taken out (into \a values, in the order
  * of kTextOptions; nullopt when an option is absent, "" when its value is missing). */
 std::vector<char*>
-takeTextOptions(int argc,
-                char** argv,
-                const std::vector<std::string>& option_names,
+takeTextOptions(int argc, char** argv, const std::vector<std::string>& option_names,
                 std::vector<std::optional<std::string>>& values)
 {
   values.assign(kTextOptions.size(), std::nullopt);
   const auto isName = [&](const std::string& arg) {
-    return isHelp(arg) ||
-           std::find(option_names.begin(), option_names.end(), arg) != option_names.end();
+    return isHelp(arg) || std::find(option_names.begin(), option_names.end(), arg) !=
+                              option_names.end();
   };
   std::vector<char*> rest{argv[0]};
   for (int i = 1; i < argc; ++i) {
@@ -237,8 +243,7 @@ parseCamera(const std::string& text)
 class MessageLog : public vtkOutputWindow
 {
 public:
-  static MessageLog*
-  New();
+  static MessageLog* New();
   vtkTypeMacro(MessageLog, vtkOutputWindow);
 
   void
@@ -306,11 +311,11 @@ using Point = Eigen::Vector3f;
 
 struct Scene
 {
-  std::vector<Point> vertices;  ///< of the mesh, all rows of INPUT (NaN included)
+  std::vector<Point> vertices; ///< of the mesh, all rows of INPUT (NaN included)
   std::vector<std::vector<std::uint32_t>> faces; ///< empty: INPUT is a cloud
-  std::vector<Point> ordinary;  ///< cloud points drawn in the ordinary colour
-  std::vector<Point> boundary;  ///< points drawn in red (cloud points or markers)
-  bool flagged_cloud = false;   ///< INPUT is a cloud with a boundary_point field
+  std::vector<Point> ordinary; ///< cloud points drawn in the ordinary colour
+  std::vector<Point> boundary; ///< points drawn in red (cloud points or markers)
+  bool flagged_cloud = false;  ///< INPUT is a cloud with a boundary_point field
 
   bool
   isMesh() const
@@ -340,9 +345,9 @@ pointsOf(const pcl::PCLPointCloud2& cloud)
 std::optional<std::vector<bool>>
 boundaryFlags(const pcl::PCLPointCloud2& cloud)
 {
-  const auto field =
-      std::find_if(cloud.fields.begin(), cloud.fields.end(),
-                   [](const pcl::PCLPointField& f) { return f.name == "boundary_point"; });
+  const auto field = std::find_if(
+      cloud.fields.begin(), cloud.fields.end(),
+      [](const pcl::PCLPointField& f) { return f.name == "boundary_point"; });
   if (field == cloud.fields.end())
     return std::nullopt;
   const std::size_t n = pointCount(cloud);
@@ -356,15 +361,32 @@ boundaryFlags(const pcl::PCLPointCloud2& cloud)
       value = static_cast<double>(v);
     };
     switch (field->datatype) {
-    case pcl::PCLPointField::INT8: read(std::int8_t{}); break;
-    case pcl::PCLPointField::UINT8: read(std::uint8_t{}); break;
-    case pcl::PCLPointField::INT16: read(std::int16_t{}); break;
-    case pcl::PCLPointField::UINT16: read(std::uint16_t{}); break;
-    case pcl::PCLPointField::INT32: read(std::int32_t{}); break;
-    case pcl::PCLPointField::UINT32: read(std::uint32_t{}); break;
-    case pcl::PCLPointField::FLOAT32: read(float{}); break;
-    case pcl::PCLPointField::FLOAT64: read(double{}); break;
-    default: fail("the boundary_point field has an unsupported type");
+    case pcl::PCLPointField::INT8:
+      read(std::int8_t{});
+      break;
+    case pcl::PCLPointField::UINT8:
+      read(std::uint8_t{});
+      break;
+    case pcl::PCLPointField::INT16:
+      read(std::int16_t{});
+      break;
+    case pcl::PCLPointField::UINT16:
+      read(std::uint16_t{});
+      break;
+    case pcl::PCLPointField::INT32:
+      read(std::int32_t{});
+      break;
+    case pcl::PCLPointField::UINT32:
+      read(std::uint32_t{});
+      break;
+    case pcl::PCLPointField::FLOAT32:
+      read(float{});
+      break;
+    case pcl::PCLPointField::FLOAT64:
+      read(double{});
+      break;
+    default:
+      fail("the boundary_point field has an unsupported type");
     }
     flags[i] = value != 0 && !std::isnan(value);
   }
@@ -559,11 +581,8 @@ meshActor(const Scene& scene, bool wireframe)
 
 /** Adds \a points to the visualizer as shaded spheres of \a size pixels. */
 void
-addPoints(pcl::visualization::PCLVisualizer& viewer,
-          const std::vector<Point>& points,
-          const std::array<double, 3>& colour,
-          double size,
-          const std::string& id)
+addPoints(pcl::visualization::PCLVisualizer& viewer, const std::vector<Point>& points,
+          const std::array<double, 3>& colour, double size, const std::string& id)
 {
   if (points.empty())
     return;
@@ -575,8 +594,8 @@ addPoints(pcl::visualization::PCLVisualizer& viewer,
       cloud, 255 * colour[0], 255 * colour[1], 255 * colour[2]);
   if (!viewer.addPointCloud<pcl::PointXYZ>(cloud, handler, id))
     fail("internal error: cannot add the points '" + id + "'");
-  viewer.setPointCloudRenderingProperties(
-      pcl::visualization::PCL_VISUALIZER_POINT_SIZE, size, id);
+  viewer.setPointCloudRenderingProperties(pcl::visualization::PCL_VISUALIZER_POINT_SIZE,
+                                          size, id);
   vtkProperty* property = (*viewer.getCloudActorMap())[id].actor->GetProperty();
   property->RenderPointsAsSpheresOn();
   property->LightingOn();
@@ -631,7 +650,8 @@ fit(vtkCamera& camera, const std::vector<Point>& points, double aspect)
     const double z = p.dot(view.cast<float>()) - middle.z();
     distance = std::max({distance, std::abs(x) / tan_h - z, std::abs(y) / tan_v - z});
   }
-  const Eigen::Vector3d centre = middle.x() * right + middle.y() * up + middle.z() * view;
+  const Eigen::Vector3d centre =
+      middle.x() * right + middle.y() * up + middle.z() * view;
   camera.SetFocalPoint(centre.data());
   const Eigen::Vector3d eye = centre - distance * view;
   camera.SetPosition(eye.data());
@@ -665,7 +685,8 @@ openDisplay()
     fail(std::string("cannot open the X display") +
          (name && *name ? std::string(" '") + name + "'" : " (DISPLAY is not set)") +
          ": VTK renders through X even off screen; on a headless machine run "
-         "xvfb-run -a " + kProgram + " ...");
+         "xvfb-run -a " +
+         kProgram + " ...");
   }
   return display;
 }
@@ -720,8 +741,9 @@ main(int argc, char** argv)
       printDetail("Mesh", std::to_string(scene.vertices.size()) + " vertices, " +
                               std::to_string(scene.faces.size()) + " faces");
     else
-      printDetail("Cloud", std::to_string(scene.ordinary.size() + scene.boundary.size()) +
-                               " finite points");
+      printDetail("Cloud",
+                  std::to_string(scene.ordinary.size() + scene.boundary.size()) +
+                      " finite points");
     printDetail("Red points", std::to_string(scene.boundary.size()));
   }
 

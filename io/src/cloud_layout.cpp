@@ -131,9 +131,7 @@ fitsDatatype(double value, std::uint8_t datatype)
 }
 
 void
-appendField(pcl::PCLPointCloud2& cloud,
-            const std::string& name,
-            std::uint8_t datatype,
+appendField(pcl::PCLPointCloud2& cloud, const std::string& name, std::uint8_t datatype,
             std::uint32_t count)
 {
   const auto size = static_cast<std::uint32_t>(pcl::getFieldSize(datatype));
@@ -151,9 +149,8 @@ checkDataSize(std::uint64_t point_step, std::uint64_t points)
 {
   constexpr std::uint64_t max = std::numeric_limits<std::uint32_t>::max();
   if (point_step > 0 && points > max / point_step)
-    throw std::length_error("more than 4 GiB of point data (" +
-                            std::to_string(points) + " points of " +
-                            std::to_string(point_step) + " bytes)");
+    throw std::length_error("more than 4 GiB of point data (" + std::to_string(points) +
+                            " points of " + std::to_string(point_step) + " bytes)");
 }
 
 void

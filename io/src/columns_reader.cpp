@@ -31,7 +31,14 @@ namespace {
  * state), `o`, `O` (select or clear an object) and `f` (end of frame) are state and
  * commands that place no point; `q` ends the stream; `P`, `L`, `v`, `E` make polygons
  * and polylines, which are not samples. */
-enum class A3dRecord { none, point, state, end, polygon };
+enum class A3dRecord
+{
+  none,
+  point,
+  state,
+  end,
+  polygon
+};
 
 A3dRecord
 a3dRecord(std::string_view code)

@@ -26,9 +26,7 @@ namespace {
 /** The position index of an OBJ face corner ("v", "v/vt", "v//vn", "v/vt/vn"),
  * resolved to 0-based; negative indices count back from the last vertex read. */
 long long
-objCorner(const Source& source,
-          std::size_t line,
-          std::string_view token,
+objCorner(const Source& source, std::size_t line, std::string_view token,
           std::size_t vertices_so_far)
 {
   const std::string_view position = token.substr(0, token.find('/'));
@@ -47,9 +45,7 @@ objCorner(const Source& source,
 } // namespace
 
 void
-readObj(const Source& source,
-        std::string_view text,
-        std::vector<float>& xyz,
+readObj(const Source& source, std::string_view text, std::vector<float>& xyz,
         std::vector<pcl::Vertices>* faces)
 {
   LineCursor lines(text.data(), text.data() + text.size());

@@ -20,9 +20,7 @@ namespace cocone {
 namespace io_internal {
 
 void
-readOff(const Source& source,
-        std::string_view text,
-        std::vector<float>& xyz,
+readOff(const Source& source, std::string_view text, std::vector<float>& xyz,
         std::vector<pcl::Vertices>* faces)
 {
   LineCursor lines(text.data(), text.data() + text.size());
@@ -75,8 +73,9 @@ readOff(const Source& source,
   if (vertex_count > std::numeric_limits<pcl::index_t>::max())
     source.failAt(lines.number(), "too many vertices");
 
-  xyz.reserve(static_cast<std::size_t>(
-      std::min<long long>(vertex_count, static_cast<long long>(text.size() / 6))) * 3);
+  xyz.reserve(static_cast<std::size_t>(std::min<long long>(
+                  vertex_count, static_cast<long long>(text.size() / 6))) *
+              3);
   for (long long i = 0; i < vertex_count; ++i) {
     if (!lines.nextContent(line, true))
       source.fail("file ends after " + std::to_string(i) + " of " +

@@ -44,10 +44,9 @@ hasControlCharacter(std::string_view line)
 }
 
 // The header keywords in the order the format prescribes.
-constexpr std::string_view pcd_keywords[] = {"VERSION", "FIELDS", "SIZE",
-                                             "TYPE",    "COUNT",  "WIDTH",
-                                             "HEIGHT",  "VIEWPOINT", "POINTS",
-                                             "DATA"};
+constexpr std::string_view pcd_keywords[] = {"VERSION", "FIELDS", "SIZE",   "TYPE",
+                                             "COUNT",   "WIDTH",  "HEIGHT", "VIEWPOINT",
+                                             "POINTS",  "DATA"};
 
 /** Checks what PCL's reader would complain about (on stderr, or by crashing, as it does
  * on an empty file), plus what it silently gets wrong in ascii data. Stricter than PCL
@@ -264,7 +263,6 @@ checkPcd(const Source& source, std::string_view text)
   }
 }
 
-
 /** A read-only stream over the bytes in memory, so that PCL parses the very bytes that
  * were checked instead of opening the file a second time (it may have changed). PCL's
  * header reader asks where the data start with tellg, hence the seeks. */
@@ -280,8 +278,8 @@ public:
 
 protected:
   pos_type
-  seekoff(off_type offset, std::ios_base::seekdir from, std::ios_base::openmode which)
-      override
+  seekoff(off_type offset, std::ios_base::seekdir from,
+          std::ios_base::openmode which) override
   {
     const off_type size = egptr() - eback();
     const off_type base = from == std::ios_base::beg   ? 0
@@ -324,16 +322,15 @@ readPcd(const Source& source, std::string_view text, pcl::PCLPointCloud2& cloud)
     result = reader.readBodyASCII(stream, cloud, version);
   }
   else {
-    result =
-        reader.readBodyBinary(reinterpret_cast<const unsigned char*>(text.data()),
-                              cloud, version, data_type == 2, data_index);
+    result = reader.readBodyBinary(reinterpret_cast<const unsigned char*>(text.data()),
+                                   cloud, version, data_type == 2, data_index);
   }
   if (result < 0)
     source.fail("PCL's PCD reader rejected the data");
   // The check and PCL read the header separately; were they ever to disagree, the
   // cloud would not be what was checked.
-  if (cloud.data.size() != static_cast<std::size_t>(cloud.width) * cloud.height *
-                               cloud.point_step)
+  if (cloud.data.size() !=
+      static_cast<std::size_t>(cloud.width) * cloud.height * cloud.point_step)
     source.fail("PCL's PCD reader gave a cloud of inconsistent size");
   makeXyzFloat(cloud);
   cloud.is_dense = allFinite(cloud);

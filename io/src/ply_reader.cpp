@@ -50,7 +50,12 @@ struct PlyElement
   std::vector<PlyProperty> properties;
 };
 
-enum class PlyFormat { ascii, binary_little_endian, binary_big_endian };
+enum class PlyFormat
+{
+  ascii,
+  binary_little_endian,
+  binary_big_endian
+};
 
 struct PlyHeader
 {
@@ -182,9 +187,8 @@ class PlyAsciiBody
 {
 public:
   PlyAsciiBody(const Source& source, std::string_view text, const PlyHeader& header)
-  : source_(source)
-  , lines_(text.data() + header.body_offset, text.data() + text.size(),
-           header.body_line)
+    : source_(source), lines_(text.data() + header.body_offset,
+                              text.data() + text.size(), header.body_line)
   {}
 
   void
@@ -198,8 +202,7 @@ public:
 
   /** Each scalar property k goes to field targets[k] of the cloud. */
   void
-  readVertices(const PlyElement& element,
-               const std::vector<int>& targets,
+  readVertices(const PlyElement& element, const std::vector<int>& targets,
                pcl::PCLPointCloud2& cloud)
   {
     std::string_view line;
@@ -230,10 +233,8 @@ public:
   }
 
   void
-  readFaces(const PlyElement& element,
-            std::size_t list_property,
-            std::size_t vertex_count,
-            std::vector<pcl::Vertices>& faces)
+  readFaces(const PlyElement& element, std::size_t list_property,
+            std::size_t vertex_count, std::vector<pcl::Vertices>& faces)
   {
     std::string_view line;
     // A face line takes at least 8 bytes ("3 0 1 2\n"); the header may claim more.
@@ -286,11 +287,10 @@ public:
         return; // fewer: what is missing belongs to an element not read here
     if (lines_.nextContent(line, false))
       source_.failAt(lines_.number(),
-                     declared == 0 ? "more " + excerpt(last.name) +
-                                         " lines than the " +
-                                         std::to_string(last.count) +
-                                         " the header declares"
-                                   : "more lines than the header declares");
+                     declared == 0
+                         ? "more " + excerpt(last.name) + " lines than the " +
+                               std::to_string(last.count) + " the header declares"
+                         : "more lines than the header declares");
   }
 
 private:
@@ -339,9 +339,9 @@ class PlyBinaryBody
 {
 public:
   PlyBinaryBody(const Source& source, std::string_view text, const PlyHeader& header)
-  : source_(source)
-  , p_(reinterpret_cast<const std::uint8_t*>(text.data()) + header.body_offset)
-  , end_(reinterpret_cast<const std::uint8_t*>(text.data()) + text.size())
+    : source_(source),
+      p_(reinterpret_cast<const std::uint8_t*>(text.data()) + header.body_offset),
+      end_(reinterpret_cast<const std::uint8_t*>(text.data()) + text.size())
   {
     const std::uint16_t probe = 1;
     std::uint8_t first_byte;
@@ -371,8 +371,7 @@ public:
   }
 
   void
-  readVertices(const PlyElement& element,
-               const std::vector<int>& targets,
+  readVertices(const PlyElement& element, const std::vector<int>& targets,
                pcl::PCLPointCloud2& cloud)
   {
     for (std::size_t i = 0; i < element.count; ++i) {
@@ -401,10 +400,8 @@ public:
   }
 
   void
-  readFaces(const PlyElement& element,
-            std::size_t list_property,
-            std::size_t vertex_count,
-            std::vector<pcl::Vertices>& faces)
+  readFaces(const PlyElement& element, std::size_t list_property,
+            std::size_t vertex_count, std::vector<pcl::Vertices>& faces)
   {
     faces.reserve(faces.size() + std::min(element.count, remaining() / 4));
     for (std::size_t i = 0; i < element.count; ++i) {
@@ -514,11 +511,8 @@ readPlyElement(Body& body, const PlyHeader& header, const PlyElement* wanted, Re
 
 template <typename Read>
 void
-walkPly(const Source& source,
-        std::string_view text,
-        const PlyHeader& header,
-        const PlyElement* wanted,
-        Read read)
+walkPly(const Source& source, std::string_view text, const PlyHeader& header,
+        const PlyElement* wanted, Read read)
 {
   if (header.format == PlyFormat::ascii) {
     PlyAsciiBody body(source, text, header);
@@ -543,9 +537,7 @@ walkPly(const Source& source,
 } // namespace
 
 void
-readPlyVertices(const Source& source,
-                std::string_view text,
-                pcl::PCLPointCloud2& cloud)
+readPlyVertices(const Source& source, std::string_view text, pcl::PCLPointCloud2& cloud)
 {
   const PlyHeader header = parsePlyHeader(source, text);
   const PlyElement* vertex = findElement(header, "vertex");
@@ -595,17 +587,15 @@ readPlyVertices(const Source& source,
   finishLayout(cloud, 0); // pads the point, so that the size below is the final one
   checkDataSize(cloud.point_step, vertex->count);
   finishLayout(cloud, room);
-  walkPly(source, text, header, vertex, [&](auto& body) {
-    body.readVertices(*vertex, targets, cloud);
-  });
+  walkPly(source, text, header, vertex,
+          [&](auto& body) { body.readVertices(*vertex, targets, cloud); });
   cloud.width = static_cast<std::uint32_t>(vertex->count);
   cloud.row_step = cloud.point_step * cloud.width;
   cloud.is_dense = allFinite(cloud);
 }
 
 void
-readPlyFaces(const Source& source,
-             std::string_view text,
+readPlyFaces(const Source& source, std::string_view text,
              std::vector<pcl::Vertices>& faces)
 {
   const PlyHeader header = parsePlyHeader(source, text);

@@ -21,7 +21,15 @@ namespace {
 
 using namespace io_internal;
 
-enum class Format { pcd, ply, obj, off, columns, unknown };
+enum class Format
+{
+  pcd,
+  ply,
+  obj,
+  off,
+  columns,
+  unknown
+};
 
 Format
 formatOf(const std::string& path, std::string& extension)
@@ -111,9 +119,10 @@ loadPointSamples(const std::string& path, pcl::PCLPointCloud2& cloud,
     }
     if (format == Format::obj || format == Format::off || format == Format::columns) {
       if (xyz.empty())
-        source.fail(format == Format::obj ? "no points (no 'v x y z' line)" :
-                    format == Format::off ? "no points (the vertex count is 0)" :
-                                            "no points (only blank or comment lines)");
+        source.fail(format == Format::obj ? "no points (no 'v x y z' line)"
+                    : format == Format::off
+                        ? "no points (the vertex count is 0)"
+                        : "no points (only blank or comment lines)");
       makeXyzCloud(xyz, cloud);
     }
   });
@@ -123,8 +132,7 @@ loadPointSamples(const std::string& path, pcl::PCLPointCloud2& cloud,
 }
 
 bool
-loadMeshFaces(const std::string& path,
-              std::vector<pcl::Vertices>& faces,
+loadMeshFaces(const std::string& path, std::vector<pcl::Vertices>& faces,
               std::string* error)
 {
   const bool ok = guarded(path, error, [&] {

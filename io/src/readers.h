@@ -20,39 +20,27 @@ namespace cocone {
 namespace io_internal {
 
 /** .xyz, .pts, .txt: appends three coordinates per point to \a xyz. */
-void
-readColumns(const Source& source, std::string_view text, std::vector<float>& xyz);
+void readColumns(const Source& source, std::string_view text, std::vector<float>& xyz);
 
 /** Wavefront OBJ: the `v` lines into \a xyz and, when \a faces is set, the `f` lines
  * (0-based). */
-void
-readObj(const Source& source,
-        std::string_view text,
-        std::vector<float>& xyz,
-        std::vector<pcl::Vertices>* faces);
+void readObj(const Source& source, std::string_view text, std::vector<float>& xyz,
+             std::vector<pcl::Vertices>* faces);
 
 /** Geomview OFF: the vertices into \a xyz and, when \a faces is set, the faces. */
-void
-readOff(const Source& source,
-        std::string_view text,
-        std::vector<float>& xyz,
-        std::vector<pcl::Vertices>* faces);
+void readOff(const Source& source, std::string_view text, std::vector<float>& xyz,
+             std::vector<pcl::Vertices>* faces);
 
 /** PLY: the vertex element's scalar properties as fields of \a cloud. */
-void
-readPlyVertices(const Source& source,
-                std::string_view text,
-                pcl::PCLPointCloud2& cloud);
+void readPlyVertices(const Source& source, std::string_view text,
+                     pcl::PCLPointCloud2& cloud);
 
 /** PLY: the face element's vertex_indices (or vertex_index) list. */
-void
-readPlyFaces(const Source& source,
-             std::string_view text,
-             std::vector<pcl::Vertices>& faces);
+void readPlyFaces(const Source& source, std::string_view text,
+                  std::vector<pcl::Vertices>& faces);
 
 /** PCD: \a text is checked here, then PCL's reader parses it. */
-void
-readPcd(const Source& source, std::string_view text, pcl::PCLPointCloud2& cloud);
+void readPcd(const Source& source, std::string_view text, pcl::PCLPointCloud2& cloud);
 
 } // namespace io_internal
 } // namespace cocone

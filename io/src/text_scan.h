@@ -45,12 +45,10 @@ private:
 
 /** A token quoted for a message: bounded and without control characters, so that a
  * binary file read as text cannot break the one-line promise. */
-std::string
-excerpt(std::string_view token);
+std::string excerpt(std::string_view token);
 
 /** \a text on one line: line breaks become blanks. */
-std::string
-oneLine(std::string text);
+std::string oneLine(std::string text);
 
 // ---------------------------------------------------------------------------------
 // Text scanning without allocations: the files hold hundreds of thousands of tokens.
@@ -65,7 +63,7 @@ class TokenCursor
 {
 public:
   explicit TokenCursor(std::string_view line)
-  : p_(line.data()), end_(line.data() + line.size())
+    : p_(line.data()), end_(line.data() + line.size())
   {}
 
   bool
@@ -91,7 +89,7 @@ class LineCursor
 {
 public:
   LineCursor(const char* begin, const char* end, std::size_t first_line = 1)
-  : p_(begin), end_(end), number_(first_line - 1)
+    : p_(begin), end_(end), number_(first_line - 1)
   {}
 
   /** The next line without its '\n' ('\r' is left to the tokenizer, which treats it as
@@ -152,25 +150,20 @@ private:
   std::size_t number_;
 };
 
-bool
-parseDouble(std::string_view token, double& value);
+bool parseDouble(std::string_view token, double& value);
 
-bool
-parseInteger(std::string_view token, long long& value);
+bool parseInteger(std::string_view token, long long& value);
 
 /** The number \a token, or a failure naming it and \a line. */
-double
-parseNumber(const Source& source, std::size_t line, std::string_view token);
+double parseNumber(const Source& source, std::size_t line, std::string_view token);
 
 /** The non-negative integer \a token, or a failure naming it and \a line. */
-long long
-parseCount(const Source& source, std::size_t line, std::string_view token);
+long long parseCount(const Source& source, std::size_t line, std::string_view token);
 
 /** Reads the regular file \a path whole into \a contents; fails with the system's
  * reason (and refuses directories, FIFOs and devices, which would block or never
  * end). */
-void
-readFile(const Source& source, const std::string& path, std::string& contents);
+void readFile(const Source& source, const std::string& path, std::string& contents);
 
 } // namespace io_internal
 } // namespace cocone

@@ -65,12 +65,12 @@ appendText(std::string& out, std::uint64_t value)
 
 std::string
 meshAsPly(const std::vector<std::array<float, 3>>& vertices,
-          const std::vector<Triangle>& triangles,
-          const std::string& creator)
+          const std::vector<Triangle>& triangles, const std::string& creator)
 {
   std::string out = "ply\nformat binary_little_endian 1.0\n"
-                    "comment written by " + creator + "\n" +
-                    "element vertex " + std::to_string(vertices.size()) + "\n" +
+                    "comment written by " +
+                    creator + "\n" + "element vertex " +
+                    std::to_string(vertices.size()) + "\n" +
                     "property float x\nproperty float y\nproperty float z\n" +
                     "element face " + std::to_string(triangles.size()) + "\n" +
                     "property list uchar int vertex_indices\nend_header\n";
@@ -88,8 +88,7 @@ meshAsPly(const std::vector<std::array<float, 3>>& vertices,
 
 std::string
 meshAsVtk(const std::vector<std::array<float, 3>>& vertices,
-          const std::vector<Triangle>& triangles,
-          const std::string& creator)
+          const std::vector<Triangle>& triangles, const std::string& creator)
 {
   std::string out = "# vtk DataFile Version 3.0\nwritten by " + creator +
                     "\nASCII\nDATASET POLYDATA\nPOINTS " +
@@ -117,12 +116,10 @@ meshAsVtk(const std::vector<std::array<float, 3>>& vertices,
 
 std::string
 meshAsObj(const std::vector<std::array<float, 3>>& vertices,
-          const std::vector<Triangle>& triangles,
-          const std::string& creator)
+          const std::vector<Triangle>& triangles, const std::string& creator)
 {
-  std::string out = "# written by " + creator + ": " +
-                    std::to_string(vertices.size()) + " vertices, " +
-                    std::to_string(triangles.size()) + " triangles\n";
+  std::string out = "# written by " + creator + ": " + std::to_string(vertices.size()) +
+                    " vertices, " + std::to_string(triangles.size()) + " triangles\n";
   for (const auto& v : vertices) {
     out += 'v';
     for (const float c : v) {
@@ -182,9 +179,7 @@ writeAll(int fd, const void* data, std::size_t size)
 } // namespace
 
 bool
-writeFile(const std::string& path,
-          const void* data,
-          std::size_t size,
+writeFile(const std::string& path, const void* data, std::size_t size,
           std::string* error)
 {
   const auto failWith = [&](int code) {
@@ -226,8 +221,8 @@ writeFile(const std::string& path,
   // a file size limit), and afterwards it is complete. So OUTPUT may be INPUT.
   static std::atomic<unsigned> counter{0};
   const fs::path folder = target.parent_path();
-  const std::string stem = "." + target.filename().string() + ".tmp-" +
-                           std::to_string(::getpid()) + "-";
+  const std::string stem =
+      "." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-";
   std::string temporary;
   int fd = -1;
   while (fd < 0) {
@@ -278,14 +273,11 @@ saveCloud(const std::string& path, const pcl::PCLPointCloud2& cloud, std::string
 }
 
 bool
-saveMesh(const std::string& path,
-         const std::vector<std::array<float, 3>>& vertices,
-         const std::vector<Triangle>& triangles,
-         const std::string& creator,
+saveMesh(const std::string& path, const std::vector<std::array<float, 3>>& vertices,
+         const std::vector<Triangle>& triangles, const std::string& creator,
          std::string* error)
 {
-  const std::string extension =
-      lowerCase(fs::path(path).extension().string());
+  const std::string extension = lowerCase(fs::path(path).extension().string());
   std::string contents;
   if (extension == ".ply")
     contents = meshAsPly(vertices, triangles, creator);
@@ -294,8 +286,8 @@ saveMesh(const std::string& path,
   else if (extension == ".obj")
     contents = meshAsObj(vertices, triangles, creator);
   else
-    return failed(error, "unsupported mesh format '" + path +
-                             "' (expected .ply, .vtk, .obj)");
+    return failed(error,
+                  "unsupported mesh format '" + path + "' (expected .ply, .vtk, .obj)");
   return writeFile(path, contents.data(), contents.size(), error);
 }
 

@@ -136,7 +136,7 @@ const std::vector<Reader> readers = {
      [](const std::string& path) {
        using Point = CGAL::Simple_cartesian<double>::Point_3;
        std::vector<Point> points;
-       std::vector<std::vector<std::size_t> > faces;
+       std::vector<std::vector<std::size_t>> faces;
        const bool ok = CGAL::IO::read_OFF(path, points, faces);
        return Result{ok, static_cast<long>(points.size()),
                      static_cast<long>(faces.size()), ""};
@@ -223,7 +223,7 @@ writeMalformed(const fs::path& dir)
                           "COUNT 1 1 1\nWIDTH 3\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\n"
                           "POINTS 3\n";
   const std::string three = "0 0 0\n1 0 0\n0 1 0\n";
-  const std::vector<std::pair<std::string, std::string> > files = {
+  const std::vector<std::pair<std::string, std::string>> files = {
       {"empty.ply", ""},
       {"few_values.ply", ply + "end_header\n1 2 3\n4 5\n7 8 9\n"},
       {"word.ply", ply + "end_header\n1 2 3\n4 x 6\n7 8 9\n"},

@@ -94,8 +94,8 @@ pointArray(py::handle points)
   py::array array = from_open3d ? numpy.attr("array")(source, "dtype"_a = "float64")
                                 : numpy.attr("asarray")(source);
   const py::dtype type = array.dtype();
-  const bool native_float = type.equal(py::dtype::of<float>()) ||
-                            type.equal(py::dtype::of<double>());
+  const bool native_float =
+      type.equal(py::dtype::of<float>()) || type.equal(py::dtype::of<double>());
   if (!native_float) {
     const char kind = type.kind();
     if (kind != 'f' && kind != 'i' && kind != 'u')
@@ -205,8 +205,7 @@ unsigned
 threadCount(long long threads)
 {
   if (threads < 0 || threads > std::numeric_limits<unsigned>::max())
-    throw py::value_error("threads = " + std::to_string(threads) +
-                          " is outside [0, " +
+    throw py::value_error("threads = " + std::to_string(threads) + " is outside [0, " +
                           std::to_string(std::numeric_limits<unsigned>::max()) +
                           "] (0: every core)");
   return static_cast<unsigned>(threads);
@@ -320,11 +319,10 @@ public:
     report["too_sparse_for_boundary_detection"] =
         statistics.tooSparseForBoundaryDetection();
     const auto& t = statistics.timings;
-    report["timings"] =
-        py::dict("boundary"_a = t.boundary, "candidates"_a = t.candidates,
-                 "pruning"_a = t.pruning, "walk"_a = t.walk,
-                 "stitching"_a = t.stitching, "finishing"_a = t.finishing,
-                 "reconstruct"_a = reconstruct_seconds);
+    report["timings"] = py::dict(
+        "boundary"_a = t.boundary, "candidates"_a = t.candidates,
+        "pruning"_a = t.pruning, "walk"_a = t.walk, "stitching"_a = t.stitching,
+        "finishing"_a = t.finishing, "reconstruct"_a = reconstruct_seconds);
     report["far_indices"] = far_indices;
     report["warning"] = warning;
     report_ = report;
@@ -349,9 +347,10 @@ public:
     // Vector3dVector wants float64 rows, Vector3iVector int32 ones, both writeable
     // (Open3D copies them into its own vectors in any case).
     const py::object points = numpy.attr("array")(vertices, "dtype"_a = "float64");
-    return o3d.attr("geometry").attr("TriangleMesh")(
-        utility.attr("Vector3dVector")(points),
-        utility.attr("Vector3iVector")(numpy.attr("array")(triangles)));
+    return o3d.attr("geometry")
+        .attr("TriangleMesh")(
+            utility.attr("Vector3dVector")(points),
+            utility.attr("Vector3iVector")(numpy.attr("array")(triangles)));
   }
 
 private:
@@ -377,8 +376,8 @@ sparseNote(const pcl::CoconeReconstruction<pcl::PointXYZ>& cocone)
   std::string changed;
   const auto compare = [&](const char* name, double value, double default_value) {
     if (value != default_value)
-      changed += std::string(changed.empty() ? "" : ", ") + name + "=" +
-                 format(value) + " (default " + format(default_value) + ")";
+      changed += std::string(changed.empty() ? "" : ", ") + name + "=" + format(value) +
+                 " (default " + format(default_value) + ")";
   };
   compare("theta", cocone.getCoconeAngle(), defaults.getCoconeAngle());
   compare("rho", cocone.getRatioBound(), defaults.getRatioBound());
@@ -428,8 +427,8 @@ reconstruct(const py::object& points, double theta, double rho, double alpha,
     // a call (conversion in, arrays out) can be measured against it.
     const auto start = std::chrono::steady_clock::now();
     cocone.reconstruct(polygons);
-    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-                  .count();
+    seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     triangles->reserve(polygons.size());
     for (const pcl::Vertices& polygon : polygons)
       triangles->push_back({static_cast<std::uint32_t>(polygon.vertices[0]),
@@ -699,7 +698,8 @@ verbosityLevel(const std::string& name)
   if (name == "verbose")
     return pcl::console::L_VERBOSE;
   throw py::value_error("verbosity must be one of always, error, warn, info, debug, "
-                        "verbose; got " + name);
+                        "verbose; got " +
+                        name);
 }
 
 std::string
@@ -991,8 +991,8 @@ PYBIND11_MODULE(pcl_cocone, m)
       "pcl::VoronoiDecimation::computeLevelsOfDetail: DECIMATE's own sets, without\n"
       "relaxation.\n"
       "\nParameters\n----------\n" +
-      points_doc +
-      "rhos : sequence of float, dimensionless, each in " + range(c::kRatioBoundRange) +
+      points_doc + "rhos : sequence of float, dimensionless, each in " +
+      range(c::kRatioBoundRange) +
       "\n"
       "    The ratio bounds, in any order.\n" +
       theta_doc + rims_doc + threads_doc +

@@ -166,8 +166,7 @@ runBoundary(const VoronoiCocone& voronoi, const BoundaryParameters& parameters,
 Status
 detectBoundarySamples(const VoronoiCocone& voronoi,
                       const BoundaryParameters& parameters,
-                      std::vector<std::uint8_t>& is_boundary,
-                      std::string* message)
+                      std::vector<std::uint8_t>& is_boundary, std::string* message)
 {
   is_boundary.clear();
   if (voronoi.status() != Status::ok) {

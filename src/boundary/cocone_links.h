@@ -78,9 +78,9 @@ enum class TangentPlane
 /** The widest gap between the directions from p to its nearby cocone links (links
  * longer than kFarLink times the median are across a hole, not nearby), measured in
  * p's tangent plane. \a links and \a scratch are reused buffers. */
-TangentGap widestTangentGap(const VoronoiCocone& voronoi, SampleIndex p,
-                            TangentPlane plane, std::vector<SampleIndex>& links,
-                            std::vector<double>& scratch);
+TangentGap
+widestTangentGap(const VoronoiCocone& voronoi, SampleIndex p, TangentPlane plane,
+                 std::vector<SampleIndex>& links, std::vector<double>& scratch);
 
 } // namespace detail
 } // namespace cocone

@@ -22,7 +22,7 @@ class StageProgress
 {
 public:
   StageProgress(const ProgressCallback& callback, double low, double high)
-  : callback_(callback), low_(low), high_(high)
+    : callback_(callback), low_(low), high_(high)
   {}
 
   /** Reports that \a share (0 to 1) of this stage is done. */

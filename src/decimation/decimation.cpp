@@ -48,7 +48,8 @@ struct QueueEntry
 
 /** Drops removed samples, the sample itself and repeats from a neighbour list. */
 void
-compact(std::vector<SampleIndex>& list, SampleIndex self, const std::vector<std::uint8_t>& alive)
+compact(std::vector<SampleIndex>& list, SampleIndex self,
+        const std::vector<std::uint8_t>& alive)
 {
   list.erase(std::remove_if(list.begin(), list.end(),
                             [&](SampleIndex q) { return q == self || !alive[q]; }),
@@ -74,10 +75,9 @@ compact(std::vector<SampleIndex>& list, SampleIndex self, const std::vector<std:
 // first, and a sample is recomputed once per time it is a candidate, not once per
 // neighbour removal.
 Status
-runDecimate(const VoronoiCocone& voronoi, DiagramState& d, double rho,
-            bool thin_rims, const std::vector<std::uint8_t>& flags,
-            DecimationLevels& levels, const ProgressCallback& progress,
-            std::string* message)
+runDecimate(const VoronoiCocone& voronoi, DiagramState& d, double rho, bool thin_rims,
+            const std::vector<std::uint8_t>& flags, DecimationLevels& levels,
+            const ProgressCallback& progress, std::string* message)
 {
   const std::size_t n = d.representative.size();
   const unsigned threads = voronoi.getNumberOfThreads();
@@ -310,7 +310,8 @@ runDecimate(const VoronoiCocone& voronoi, DiagramState& d, double rho,
         dirty[q] = 1;
       }
 
-      if (progress && (removals & 1023u) == 0 && std::isfinite(smallest) && rho > smallest) {
+      if (progress && (removals & 1023u) == 0 && std::isfinite(smallest) &&
+          rho > smallest) {
         if (!progress(std::min(1.0, (running_max - smallest) / (rho - smallest)))) {
           detail::setMessage(message, "cancelled");
           levels.removals = removals;
@@ -337,9 +338,9 @@ relaxLevels(const VoronoiCocone& voronoi, const std::vector<std::uint8_t>& fixed
   std::vector<std::uint8_t> kept(n, 0);
   for (std::size_t s = 0; s < n; ++s)
     kept[s] = levels.level[s] >= rho;
-  const Status status = relaxDecimatedSample(voronoi, fixed, iterations,
-                                             voronoi.getNumberOfThreads(), kept,
-                                             levels.relaxation_moves, message);
+  const Status status =
+      relaxDecimatedSample(voronoi, fixed, iterations, voronoi.getNumberOfThreads(),
+                           kept, levels.relaxation_moves, message);
   if (status != Status::ok)
     return status;
   // The levels stay true to the output: a sample moved to is kept at rho, one moved
@@ -357,12 +358,9 @@ relaxLevels(const VoronoiCocone& voronoi, const std::vector<std::uint8_t>& fixed
 } // namespace
 
 Status
-decimate(VoronoiCocone&& voronoi,
-         const DecimationParameters& parameters,
-         const std::vector<std::uint8_t>& boundary,
-         DecimationLevels& levels,
-         const ProgressCallback& progress,
-         std::string* message)
+decimate(VoronoiCocone&& voronoi, const DecimationParameters& parameters,
+         const std::vector<std::uint8_t>& boundary, DecimationLevels& levels,
+         const ProgressCallback& progress, std::string* message)
 {
   levels = DecimationLevels();
   DiagramState& d = detail::VoronoiCoconeAccess::state(voronoi);
@@ -377,9 +375,10 @@ decimate(VoronoiCocone&& voronoi,
   }
   const bool relaxing = parameters.relaxation_iterations > 0;
   if ((parameters.thin_rims || relaxing) && boundary.size() != voronoi.size()) {
-    detail::setMessage(message, "the decimation needs BOUNDARY's flag of every sample: " +
-                                    std::to_string(boundary.size()) + " flags for " +
-                                    std::to_string(voronoi.size()) + " samples");
+    detail::setMessage(message,
+                       "the decimation needs BOUNDARY's flag of every sample: " +
+                           std::to_string(boundary.size()) + " flags for " +
+                           std::to_string(voronoi.size()) + " samples");
     return Status::invalid_parameter;
   }
   // The relaxation takes about a tenth of a run when it runs.

@@ -51,10 +51,11 @@ struct SiteGraph
 {
   std::vector<std::uint32_t> offsets, neighbours;
 
-  void build(const std::vector<Eigen::Vector3d>& position)
+  void
+  build(const std::vector<Eigen::Vector3d>& position)
   {
     const std::size_t count = position.size();
-    std::vector<std::pair<detail::Point, SampleIndex> > input;
+    std::vector<std::pair<detail::Point, SampleIndex>> input;
     input.reserve(count);
     for (std::size_t k = 0; k < count; ++k) {
       const Eigen::Vector3d& p = position[k];
@@ -74,7 +75,7 @@ struct SiteGraph
     // join its slot's neighbours, and take its neighbours and that slot as their own:
     // a walk reaches them, leaves them, and breaks their ties like any other.
     std::vector<std::uint32_t> host(count);
-    std::vector<std::pair<std::uint32_t, std::uint32_t> > guests; // (host, guest)
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> guests; // (host, guest)
     for (std::size_t k = 0; k < count; ++k) {
       host[k] = static_cast<std::uint32_t>(k);
       if (vertex_of[k] == detail::VertexHandle()) {
@@ -103,8 +104,9 @@ struct SiteGraph
 
   /** The slot whose position is nearest \a q, walking from slot \a start; ties to the
    * smaller slot, so the answer does not depend on the start. */
-  std::uint32_t nearest(const Eigen::Vector3d& q, std::uint32_t start,
-                        const std::vector<Eigen::Vector3d>& position) const
+  std::uint32_t
+  nearest(const Eigen::Vector3d& q, std::uint32_t start,
+          const std::vector<Eigen::Vector3d>& position) const
   {
     std::uint32_t at = start;
     double at2 = (position[at] - q).squaredNorm();
@@ -240,12 +242,9 @@ relax(const VoronoiCocone& voronoi, const std::vector<std::uint8_t>& fixed,
 
 Status
 relaxDecimatedSample(const VoronoiCocone& voronoi,
-                     const std::vector<std::uint8_t>& fixed,
-                     unsigned iterations,
-                     unsigned threads,
-                     std::vector<std::uint8_t>& kept,
-                     std::size_t& moves,
-                     std::string* message)
+                     const std::vector<std::uint8_t>& fixed, unsigned iterations,
+                     unsigned threads, std::vector<std::uint8_t>& kept,
+                     std::size_t& moves, std::string* message)
 {
   moves = 0;
   const std::size_t n = voronoi.size();

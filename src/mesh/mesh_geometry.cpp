@@ -25,8 +25,7 @@ constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max();
  * they share (by index). The predicates are exact (filtered), so a touching pair
  * counts as intersecting. */
 bool
-intersectBeyondSharedFeatures(const Point* p,
-                              const TriangleIndices& a,
+intersectBeyondSharedFeatures(const Point* p, const TriangleIndices& a,
                               const TriangleIndices& b)
 {
   int shared = 0;
@@ -122,8 +121,7 @@ toCgal(const Eigen::Vector3d& p)
 } // namespace
 
 bool
-trianglesIntersect(const std::vector<Eigen::Vector3d>& points,
-                   const TriangleIndices& a,
+trianglesIntersect(const std::vector<Eigen::Vector3d>& points, const TriangleIndices& a,
                    const TriangleIndices& b)
 {
   for (int k = 0; k < 3; ++k)
@@ -239,7 +237,8 @@ countSelfIntersections(const std::vector<Eigen::Vector3d>& points,
   std::size_t count = 0;
   CGAL::box_self_intersection_d(
       boxes.begin(), boxes.end(), [&](const Box& a, const Box& b) {
-        if (intersectBeyondSharedFeatures(p.data(), triangles[a.info()], triangles[b.info()]))
+        if (intersectBeyondSharedFeatures(p.data(), triangles[a.info()],
+                                          triangles[b.info()]))
           ++count;
       });
   return count;

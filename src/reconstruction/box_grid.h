@@ -48,8 +48,7 @@ public:
 
   /** The side of the cells for boxes of triangles: twice the mean of the \a count edges
    * summing to \a edges (a triangle then spans a few cells); 1 when there is none. */
-  static double
-  cellSideFor(double edges, std::size_t count);
+  static double cellSideFor(double edges, std::size_t count);
 
   /** An empty grid of cubes of side \a cell_side (> 0). */
   explicit BoxGrid(double cell_side) : cell_(cell_side) {}
@@ -69,8 +68,7 @@ public:
   }
 
   /** Lists entry \a id, of box \a box. */
-  void
-  insert(std::uint32_t id, const Box& box);
+  void insert(std::uint32_t id, const Box& box);
 
   /** Calls visit(id) for every entry listed in a cell that \a query meets (so for every
    * entry whose box meets \a query, and perhaps for others near it; an entry listed in
@@ -186,7 +184,7 @@ private:
   }
 
   double cell_;
-  std::unordered_map<CellKey, std::vector<std::uint32_t> > cells_;
+  std::unordered_map<CellKey, std::vector<std::uint32_t>> cells_;
   std::vector<std::uint32_t> large_; // entries over more than kMostCells cells
   std::vector<Box> large_boxes_;     // their boxes, in the same order
 };

@@ -39,8 +39,7 @@ circumradius(const Vector& a, const Vector& b, const Vector& c)
 // every non-boundary vertex marks it, and it has one.
 std::size_t
 collectCandidates(const VoronoiCocone& voronoi,
-                  const std::vector<std::uint8_t>& boundary,
-                  MeshState& mesh)
+                  const std::vector<std::uint8_t>& boundary, MeshState& mesh)
 {
   // Nearly every marked triangle of a well sampled surface is a candidate.
   const std::size_t expected = voronoi.markedTriangles().size();
@@ -81,17 +80,17 @@ removeLids(MeshState& mesh, const std::vector<double>& spacing,
   constexpr double kOversized = 1.25; // circumradius in local spacings
   std::vector<std::uint8_t> oversized(mesh.poolSize(), 0);
   runInArena(threads, [&] {
-    tbb::parallel_for(
-        tbb::blocked_range<std::uint32_t>(0, mesh.poolSize(), 4096),
-        [&](const tbb::blocked_range<std::uint32_t>& range) {
-          for (std::uint32_t t = range.begin(); t != range.end(); ++t) {
-            const TriangleIndices& tri = mesh.triangle(t);
-            const double local =
-                std::max({spacing[tri[0]], spacing[tri[1]], spacing[tri[2]]});
-            oversized[t] = circumradius(points[tri[0]], points[tri[1]],
-                                        points[tri[2]]) > kOversized * local;
-          }
-        });
+    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, mesh.poolSize(), 4096),
+                      [&](const tbb::blocked_range<std::uint32_t>& range) {
+                        for (std::uint32_t t = range.begin(); t != range.end(); ++t) {
+                          const TriangleIndices& tri = mesh.triangle(t);
+                          const double local = std::max(
+                              {spacing[tri[0]], spacing[tri[1]], spacing[tri[2]]});
+                          oversized[t] =
+                              circumradius(points[tri[0]], points[tri[1]],
+                                           points[tri[2]]) > kOversized * local;
+                        }
+                      });
   });
   // Boundary samples and the samples sharing a candidate with one.
   std::vector<std::uint8_t> near_boundary(boundary);

@@ -21,16 +21,14 @@ namespace detail {
  * such vertex. Returns the number of candidates. */
 std::size_t
 collectCandidates(const VoronoiCocone& voronoi,
-                  const std::vector<std::uint8_t>& boundary,
-                  MeshState& mesh);
+                  const std::vector<std::uint8_t>& boundary, MeshState& mesh);
 
 /** Rejects the candidates of \a mesh that form lids over holes (see the source), with
  * the local spacings \a spacing of the samples and BOUNDARY's flags \a boundary. In
  * parallel on \a threads threads (0: all). Returns the number of triangles rejected. */
-std::size_t
-removeLids(MeshState& mesh, const std::vector<double>& spacing,
-           const std::vector<std::uint8_t>& boundary, double true_boundary_ratio,
-           unsigned threads);
+std::size_t removeLids(MeshState& mesh, const std::vector<double>& spacing,
+                       const std::vector<std::uint8_t>& boundary,
+                       double true_boundary_ratio, unsigned threads);
 
 } // namespace detail
 } // namespace cocone

@@ -38,7 +38,7 @@ void
 findCrossingsBySuspectGrid(const MeshState& mesh, unsigned threads,
                            const std::vector<std::uint32_t>& suspects,
                            const Crosses& crosses,
-                           std::vector<std::vector<std::uint32_t> >& crossing)
+                           std::vector<std::vector<std::uint32_t>>& crossing)
 {
   const std::vector<Vector>& points = mesh.points();
   double edges = 0;
@@ -52,7 +52,7 @@ findCrossingsBySuspectGrid(const MeshState& mesh, unsigned threads,
   }
 
   using Pair = std::pair<std::uint32_t, std::uint32_t>; // suspect position, triangle
-  tbb::enumerable_thread_specific<std::vector<Pair> > found;
+  tbb::enumerable_thread_specific<std::vector<Pair>> found;
   const auto ask = [&](const tbb::blocked_range<std::uint32_t>& range) {
     std::vector<Pair>& pairs = found.local();
     for (std::uint32_t u = range.begin(); u != range.end(); ++u) {
@@ -238,7 +238,7 @@ removeCrossings(MeshState& mesh, PinchResolver& pinches,
   // Delaunay neighbours instead read some 30 incidence lists per suspect and cost twice
   // as much (PCL's table scene: 1.1 s against 0.55 s), and could miss a crossing
   // triangle with no corner there.
-  std::vector<std::vector<std::uint32_t> > crossing(suspects.size());
+  std::vector<std::vector<std::uint32_t>> crossing(suspects.size());
   const auto crosses = [&](std::uint32_t t, const Box& t_box, std::uint32_t u,
                            const Box& u_box) {
     // Most are apart, which their boxes tell without the call (the exact test starts
@@ -248,7 +248,7 @@ removeCrossings(MeshState& mesh, PinchResolver& pinches,
   };
   if (mesh.hasGrid()) {
     // The fills built the mesh's grid: each suspect asks it.
-    tbb::enumerable_thread_specific<std::vector<std::uint32_t> > scratch;
+    tbb::enumerable_thread_specific<std::vector<std::uint32_t>> scratch;
     const auto findCrossings = [&](const tbb::blocked_range<std::size_t>& range) {
       std::vector<std::uint32_t>& nearby = scratch.local();
       for (std::size_t i = range.begin(); i != range.end(); ++i) {

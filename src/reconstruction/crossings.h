@@ -21,9 +21,8 @@ namespace detail {
  * they lie on it (see the source); \a spacing holds the local spacings of the samples.
  * The new triangles join the pool in group kPolygonGroup. Returns the number of
  * samples put back. */
-std::size_t
-insertUnusedSamples(MeshState& mesh, const VoronoiCocone& voronoi,
-                    const std::vector<double>& spacing);
+std::size_t insertUnusedSamples(MeshState& mesh, const VoronoiCocone& voronoi,
+                                const std::vector<double>& spacing);
 
 /** What removeCrossings did. */
 struct CrossingRemoval

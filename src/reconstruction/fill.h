@@ -35,20 +35,18 @@ public:
    * hole makes; a fill larger than \a true_boundary_ratio local spacings is a true
    * boundary, and is not made. */
   PolygonFiller(MeshState& mesh, PinchResolver& pinches, double true_boundary_ratio)
-      : mesh_(mesh), pinches_(pinches), true_boundary_ratio_(true_boundary_ratio)
+    : mesh_(mesh), pinches_(pinches), true_boundary_ratio_(true_boundary_ratio)
   {}
 
   /** Closes the hole of \a loop (as the mesh triangles run it), whose samples are
    * \a spacing apart; \a loop becomes the grown hole's loop when the hole grew. The
    * fill's triangles join the pool in group kPolygonGroup. */
-  PolygonFill
-  fill(std::vector<SampleIndex>& loop, double spacing);
+  PolygonFill fill(std::vector<SampleIndex>& loop, double spacing);
 
 private:
-  bool
-  fillByLeastArea(const std::vector<SampleIndex>& loop,
-                  std::vector<TriangleIndices>& fill,
-                  std::vector<std::uint32_t>& blockers);
+  bool fillByLeastArea(const std::vector<SampleIndex>& loop,
+                       std::vector<TriangleIndices>& fill,
+                       std::vector<std::uint32_t>& blockers);
 
   MeshState& mesh_;
   PinchResolver& pinches_;

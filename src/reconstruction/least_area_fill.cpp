@@ -64,8 +64,7 @@ fillLoopByLeastArea(const std::vector<Vector>& points,
                     const std::function<bool(std::uint32_t, std::uint32_t)>& is_edge,
                     const std::vector<TriangleIndices>& obstacles,
                     std::vector<TriangleIndices>& fill,
-                    std::vector<std::uint32_t>& blockers,
-                    LeastAreaFillScratch& scratch)
+                    std::vector<std::uint32_t>& blockers, LeastAreaFillScratch& scratch)
 {
   fill.clear();
   blockers.clear();
@@ -135,13 +134,18 @@ fillLoopByLeastArea(const std::vector<Vector>& points,
           const TriangleIndices triangle = {loop[j], loop[i], loop[k]};
           areas[at(i, j, k)] = 0.5 * orientedNormal(points, triangle).norm();
         }
-  enum : std::uint8_t { kUntested, kClear, kCrossing };
+  enum : std::uint8_t
+  {
+    kUntested,
+    kClear,
+    kCrossing
+  };
   std::vector<std::uint8_t>& verdicts = scratch.verdicts;
   verdicts.assign(m * m * m, kUntested);
   // What the tested triangles of the rounds cross (positions in obstacles): crossed_by
   // maps one to its range.
   std::vector<std::uint32_t> crossed;
-  std::unordered_map<std::size_t, std::pair<std::size_t, std::size_t> > crossed_by;
+  std::unordered_map<std::size_t, std::pair<std::size_t, std::size_t>> crossed_by;
   std::vector<double> cost(m * m), cost_to(m * m);
   std::vector<std::uint32_t> split(m * m, 0);
   // The least-area fill with the triangles known to cross excluded. The full search
@@ -150,7 +154,7 @@ fillLoopByLeastArea(const std::vector<Vector>& points,
   // choice as a scan keeping the smallest clear one, with ties to the smaller split.
   // What the smaller candidates cross is what stands between the subproblem and a
   // smaller fill: those are the blockers. Larger candidates are never tested.
-  std::vector<std::pair<double, std::uint32_t> > by_area;
+  std::vector<std::pair<double, std::uint32_t>> by_area;
   const auto solve = [&](bool test_every) {
     const std::vector<std::uint8_t>& diagonals = test_every ? new_diagonal : usable;
     std::fill(cost.begin(), cost.end(), infinity);
@@ -205,11 +209,11 @@ fillLoopByLeastArea(const std::vector<Vector>& points,
     return cost[m - 1] < infinity;
   };
   // The optimum's triangles, from the splits, as (i, j, k) of the loop and in the fill.
-  std::vector<std::array<std::size_t, 3> > chosen;
+  std::vector<std::array<std::size_t, 3>> chosen;
   const auto collectFill = [&] {
     fill.clear();
     chosen.clear();
-    std::vector<std::pair<std::size_t, std::size_t> > stack = {{0, m - 1}};
+    std::vector<std::pair<std::size_t, std::size_t>> stack = {{0, m - 1}};
     while (!stack.empty()) {
       const auto [i, k] = stack.back();
       stack.pop_back();
@@ -267,7 +271,6 @@ fillLoopByLeastArea(const std::vector<Vector>& points,
   collectFill();
   return true;
 }
-
 
 } // namespace detail
 } // namespace cocone

@@ -45,14 +45,11 @@ struct LeastAreaFillScratch
  *             first, and empty when the fill was found quickly
  * \param[in,out] scratch tables reused between calls
  * \return whether a fill exists (false also for fewer than 3 vertices) */
-bool
-fillLoopByLeastArea(const std::vector<Eigen::Vector3d>& points,
-                    const std::vector<std::uint32_t>& loop,
-                    const std::function<bool(std::uint32_t, std::uint32_t)>& is_edge,
-                    const std::vector<TriangleIndices>& obstacles,
-                    std::vector<TriangleIndices>& fill,
-                    std::vector<std::uint32_t>& blockers,
-                    LeastAreaFillScratch& scratch);
+bool fillLoopByLeastArea(
+    const std::vector<Eigen::Vector3d>& points, const std::vector<std::uint32_t>& loop,
+    const std::function<bool(std::uint32_t, std::uint32_t)>& is_edge,
+    const std::vector<TriangleIndices>& obstacles, std::vector<TriangleIndices>& fill,
+    std::vector<std::uint32_t>& blockers, LeastAreaFillScratch& scratch);
 
 } // namespace detail
 } // namespace cocone

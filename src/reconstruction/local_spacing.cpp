@@ -68,9 +68,7 @@ typicalSpacing(const std::vector<double>& spacing,
 // scans the fills of true holes are fans of long, thin triangles whose circumradii are
 // no larger than those of many fills of small gaps; this measure separates them).
 bool
-isTrueBoundary(double area,
-               double perimeter,
-               double spacing,
+isTrueBoundary(double area, double perimeter, double spacing,
                double true_boundary_ratio)
 {
   return perimeter > 0 && 2 * area / perimeter > true_boundary_ratio * spacing;

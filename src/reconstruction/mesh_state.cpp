@@ -14,8 +14,8 @@ namespace cocone {
 namespace detail {
 
 MeshState::MeshState(const std::vector<Vector>& points)
-    : points_(points), n_(points.size()), group_start_{0}, mesh_degree_(n_, 0),
-      fan_normal_(n_, Vector::Zero())
+  : points_(points), n_(points.size()), group_start_{0}, mesh_degree_(n_, 0),
+    fan_normal_(n_, Vector::Zero())
 {}
 
 void
@@ -93,7 +93,7 @@ MeshState::countFans(SampleIndex v) const
   return labelFans(v, fan, label);
 }
 
-std::vector<std::vector<SampleIndex> >
+std::vector<std::vector<SampleIndex>>
 MeshState::traceLoops() const
 {
   // Boundary edges a -> b, as the single mesh triangle on them traverses them: found
@@ -112,7 +112,7 @@ MeshState::traceLoops() const
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   std::vector<std::uint8_t> used(edges.size(), 0);
-  std::vector<std::vector<SampleIndex> > loops;
+  std::vector<std::vector<SampleIndex>> loops;
   for (std::size_t start = 0; start < edges.size(); ++start) {
     if (used[start])
       continue;

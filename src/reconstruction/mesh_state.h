@@ -93,8 +93,7 @@ public:
   {
     return static_cast<std::uint32_t>(pool_.size());
   }
-  void
-  reservePool(std::size_t triangles);
+  void reservePool(std::size_t triangles);
   /** Adds \a t to the pool as a candidate of \a group (oriented as given); returns its
    * id. */
   std::uint32_t
@@ -200,8 +199,7 @@ public:
 
   // --- incidence ------------------------------------------------------------------
   /** Builds the incidence lists of the whole pool. */
-  void
-  rebuildIncidence();
+  void rebuildIncidence();
   /** Whether triangles were added since the lists were last built. */
   bool
   hasLateTriangles() const
@@ -342,16 +340,13 @@ public:
     return normal.dot(fan_normal_[a]) < 0 || normal.dot(fan_normal_[b]) < 0;
   }
   /** The total area of the mesh triangles \a triangles. */
-  double
-  area(const std::vector<std::uint32_t>& triangles) const;
+  double area(const std::vector<std::uint32_t>& triangles) const;
   /** Sorts the mesh triangles at \a v (into \a fan) into fans: triangles connected
    * through edges at v; label[i] is the fan of fan[i] (the position in \a fan of one
    * of its triangles). Returns the number of fans. */
-  std::size_t
-  labelFans(SampleIndex v, std::vector<std::uint32_t>& fan,
-            std::vector<std::uint32_t>& label) const;
-  std::size_t
-  countFans(SampleIndex v) const;
+  std::size_t labelFans(SampleIndex v, std::vector<std::uint32_t>& fan,
+                        std::vector<std::uint32_t>& label) const;
+  std::size_t countFans(SampleIndex v) const;
 
   // --- open edges and loops -------------------------------------------------------
   /** Notes that edge (a, b) may be a boundary edge of the mesh. */
@@ -370,14 +365,11 @@ public:
   }
   /** The boundary loops of the mesh, each a cycle a -> b -> ... as the mesh
    * triangles traverse its edges. */
-  std::vector<std::vector<SampleIndex> >
-  traceLoops() const;
+  std::vector<std::vector<SampleIndex>> traceLoops() const;
   /** The boundary loop through \a start (see the source); false if there is none. */
-  bool
-  traceLoopFrom(SampleIndex start, std::vector<SampleIndex>& loop) const;
+  bool traceLoopFrom(SampleIndex start, std::vector<SampleIndex>& loop) const;
   /** Length of a closed loop (the last vertex joins the first). */
-  double
-  loopLength(const std::vector<SampleIndex>& loop) const;
+  double loopLength(const std::vector<SampleIndex>& loop) const;
 
   // --- the change log -------------------------------------------------------------
   /** Whether enterMesh and leaveMesh log what they do (off at first). */
@@ -395,8 +387,7 @@ public:
   }
   /** The boxes of the triangles whose membership in the mesh changed since the log
    * was last cleared, net (a fill tried and undone changed nothing); clears the log. */
-  std::vector<Box>
-  takeNetChangedBoxes();
+  std::vector<Box> takeNetChangedBoxes();
   void
   clearChanges()
   {
@@ -411,8 +402,7 @@ public:
     return {points_[t[0]].cwiseMin(points_[t[1]]).cwiseMin(points_[t[2]]),
             points_[t[0]].cwiseMax(points_[t[1]]).cwiseMax(points_[t[2]])};
   }
-  Box
-  boundingBox(const std::vector<SampleIndex>& samples) const;
+  Box boundingBox(const std::vector<SampleIndex>& samples) const;
   /** Whether the grid of mesh triangles exists (buildGrid). */
   bool
   hasGrid() const
@@ -420,19 +410,15 @@ public:
     return grid_.has_value();
   }
   /** Enters the mesh triangles into the grid, once (enterMesh keeps it up to date). */
-  void
-  buildGrid();
+  void buildGrid();
   /** A superset of the mesh triangles that can touch \a box, sorted. Needs buildGrid().
    * Read-only: threads may query at once. */
-  void
-  meshNear(const Box& box, std::vector<std::uint32_t>& nearby) const;
+  void meshNear(const Box& box, std::vector<std::uint32_t>& nearby) const;
   /** Whether mesh triangle t crosses another mesh triangle. */
-  bool
-  crossesMesh(std::uint32_t t);
+  bool crossesMesh(std::uint32_t t);
   /** Whether a triangle of \a added (already in the mesh) crosses another mesh
    * triangle. */
-  bool
-  intersectsSurface(const std::vector<std::uint32_t>& added);
+  bool intersectsSurface(const std::vector<std::uint32_t>& added);
   /** Whether \a added (already in the mesh) closes the hole of \a loop (see the
    * source). */
   bool
@@ -450,7 +436,7 @@ private:
   // Incidence lists: the triangles at v are incidence_[offsets_[v] .. offsets_[v + 1]).
   std::vector<std::uint32_t> offsets_;
   std::vector<Incidence> incidence_;
-  std::unordered_map<SampleIndex, std::vector<std::uint32_t> > late_; // added since
+  std::unordered_map<SampleIndex, std::vector<std::uint32_t>> late_; // added since
 
   std::vector<std::uint32_t> mesh_degree_; // mesh triangles at each sample
   // Sum of the oriented normals (twice the areas) of the mesh triangles at each sample:
@@ -461,7 +447,7 @@ private:
   bool log_changes_ = false; // whether enterMesh and leaveMesh log to changed_
   // Triangles that entered or left the mesh, each with whether it was in the mesh
   // before.
-  std::vector<std::pair<std::uint32_t, bool> > changed_;
+  std::vector<std::pair<std::uint32_t, bool>> changed_;
 
   // A uniform grid over the mesh triangles' bounding boxes, built (buildGrid) by the
   // first check that added triangles cross nothing (a fill across a hole can meet a

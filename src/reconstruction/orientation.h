@@ -12,8 +12,7 @@ namespace detail {
 /** Flips every closed component of the mesh of \a mesh whose signed volume is
  * negative (see the source). Needs one fan per vertex, and every boundary edge among
  * the edges noted as maybe open. */
-void
-orientClosedComponentsOutward(MeshState& mesh);
+void orientClosedComponentsOutward(MeshState& mesh);
 
 } // namespace detail
 } // namespace cocone

@@ -22,18 +22,16 @@ public:
    * sample flagged in \a boundary are never pruned. In parallel on \a threads threads
    * (0: all) when a group is large. */
   Pruner(MeshState& mesh, const std::vector<std::uint8_t>& boundary, unsigned threads)
-      : mesh_(mesh), boundary_(boundary), threads_(threads)
+    : mesh_(mesh), boundary_(boundary), threads_(threads)
   {}
 
   /** Rejects the candidates of \a group that must go, until none is left to; returns
    * their number. */
-  std::size_t
-  prune(std::uint32_t group);
+  std::size_t prune(std::uint32_t group);
 
 private:
-  bool
-  mustPrune(std::uint32_t t, std::vector<SampleIndex>& apexes,
-            std::vector<double>& angles) const;
+  bool mustPrune(std::uint32_t t, std::vector<SampleIndex>& apexes,
+                 std::vector<double>& angles) const;
 
   MeshState& mesh_;
   const std::vector<std::uint8_t>& boundary_;

@@ -159,8 +159,7 @@ Status
 reconstructSurface(const VoronoiCocone& voronoi,
                    const ReconstructionParameters& parameters,
                    std::vector<TriangleIndices>& triangles,
-                   ReconstructionReport& report,
-                   const ProgressCallback& progress,
+                   ReconstructionReport& report, const ProgressCallback& progress,
                    std::string* message)
 {
   triangles.clear();
@@ -171,7 +170,8 @@ reconstructSurface(const VoronoiCocone& voronoi,
     return Status::not_computed;
   }
   if (!isValid(parameters)) {
-    detail::setMessage(message, "a parameter of the reconstruction is outside its range");
+    detail::setMessage(message,
+                       "a parameter of the reconstruction is outside its range");
     return Status::invalid_parameter;
   }
   const Status status = detail::runGuarded("the reconstruction", message, [&] {

@@ -43,7 +43,7 @@ Stitcher::isTrueBoundary(double area, double perimeter, double spacing) const
 // The hole stays open, and everything is undone, when it is a true boundary
 // (isTrueBoundary) or when closing it would break the manifold.
 void
-Stitcher::stitch(std::vector<std::vector<SampleIndex> >& loops)
+Stitcher::stitch(std::vector<std::vector<SampleIndex>>& loops)
 {
   const std::vector<Vector>& points = mesh_.points();
   if (loops.empty())
@@ -53,9 +53,9 @@ Stitcher::stitch(std::vector<std::vector<SampleIndex> >& loops)
   // Offer every hole its Delaunay triangles, in a group of its own (numbered after
   // those of any earlier call).
   const std::uint32_t first_group = mesh_.groupCount();
-  std::vector<std::vector<SampleIndex> > members(loops.size());
+  std::vector<std::vector<SampleIndex>> members(loops.size());
   std::vector<std::uint8_t> kept_open(loops.size(), 0);
-  std::vector<std::vector<std::array<SampleIndex, 3> > > offered(loops.size());
+  std::vector<std::vector<std::array<SampleIndex, 3>>> offered(loops.size());
   // Each hole's samples and Delaunay triangles, in parallel (read-only), then added to
   // the pool in hole order.
   const auto prepare = [&](const tbb::blocked_range<std::size_t>& range) {
@@ -102,7 +102,7 @@ Stitcher::stitch(std::vector<std::vector<SampleIndex> >& loops)
   for (std::size_t h = 0; h < loops.size(); ++h) {
     for (const auto& t : offered[h])
       mesh_.addToPool({t[0], t[1], t[2]}, first_group + static_cast<std::uint32_t>(h));
-    std::vector<std::array<SampleIndex, 3> >().swap(offered[h]);
+    std::vector<std::array<SampleIndex, 3>>().swap(offered[h]);
     mesh_.closeGroup();
   }
   // Nothing added to the pool since the lists were built (every loop kept open, as a
@@ -190,10 +190,10 @@ Stitcher::stitch(std::vector<std::vector<SampleIndex> >& loops)
 std::size_t
 Stitcher::stitchLoops()
 {
-  std::vector<std::vector<SampleIndex> >& tried = tried_;
+  std::vector<std::vector<SampleIndex>>& tried = tried_;
   // What changed since the last round, net: a fill tried and undone changes nothing.
   const std::vector<Box> changed_boxes = mesh_.takeNetChangedBoxes();
-  std::vector<std::vector<SampleIndex> > loops, keys;
+  std::vector<std::vector<SampleIndex>> loops, keys;
   for (std::vector<SampleIndex>& loop : mesh_.traceLoops()) {
     std::vector<SampleIndex> key = loop;
     std::sort(key.begin(), key.end());

@@ -28,20 +28,18 @@ public:
   Stitcher(MeshState& mesh, const VoronoiCocone& voronoi,
            const std::vector<double>& spacing, Pruner& pruner, Walker& walker,
            PolygonFiller& filler, double true_boundary_ratio)
-      : mesh_(mesh), voronoi_(voronoi), spacing_(spacing), pruner_(pruner),
-        walker_(walker), filler_(filler), true_boundary_ratio_(true_boundary_ratio)
+    : mesh_(mesh), voronoi_(voronoi), spacing_(spacing), pruner_(pruner),
+      walker_(walker), filler_(filler), true_boundary_ratio_(true_boundary_ratio)
   {}
 
   /** One round: offers the loops of the mesh not offered before, and those offered
    * before around which the mesh changed since (its change log, which this reads and
    * clears). Returns the number of loops offered. */
-  std::size_t
-  stitchLoops();
+  std::size_t stitchLoops();
 
   /** Offers every loop of \a loops (boundary loops of the mesh, as its triangles run
    * them); keeps in \a loops those that stay open. */
-  void
-  stitch(std::vector<std::vector<SampleIndex> >& loops);
+  void stitch(std::vector<std::vector<SampleIndex>>& loops);
 
   /** Holes closed so far. */
   std::size_t
@@ -57,10 +55,8 @@ public:
   }
 
 private:
-  double
-  typicalSpacing(const std::vector<SampleIndex>& samples) const;
-  bool
-  isTrueBoundary(double area, double perimeter, double spacing) const;
+  double typicalSpacing(const std::vector<SampleIndex>& samples) const;
+  bool isTrueBoundary(double area, double perimeter, double spacing) const;
 
   MeshState& mesh_;
   const VoronoiCocone& voronoi_;
@@ -69,7 +65,7 @@ private:
   Walker& walker_;
   PolygonFiller& filler_;
   const double true_boundary_ratio_;
-  std::vector<std::vector<SampleIndex> > tried_; // vertex sets of the loops offered
+  std::vector<std::vector<SampleIndex>> tried_; // vertex sets of the loops offered
   std::size_t stitched_holes_ = 0, stitched_triangles_ = 0;
 };
 

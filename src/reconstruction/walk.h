@@ -37,8 +37,7 @@ public:
   /** Gives every noted vertex with several fans its largest one (see the source).
    * Returns the number of mesh triangles removed; appends them to \a removed when it
    * is given. */
-  std::size_t
-  resolve(std::vector<std::uint32_t>* removed = nullptr);
+  std::size_t resolve(std::vector<std::uint32_t>* removed = nullptr);
 
 private:
   MeshState& mesh_;
@@ -59,20 +58,18 @@ public:
   /** Walks on \a mesh; forced steps note their apexes to \a pinches; the seeds are
    * sorted on \a threads threads (0: all). */
   Walker(MeshState& mesh, PinchResolver& pinches, unsigned threads)
-      : mesh_(mesh), pinches_(pinches), threads_(threads)
+    : mesh_(mesh), pinches_(pinches), threads_(threads)
   {}
 
   /** Extracts the surface from the candidates of the cocone group: seeds a walk on the
    * outside of what is left until no seed is left. Returns the number of triangles
    * walked (seeds included). */
-  std::size_t
-  walkAll();
+  std::size_t walkAll();
 
   /** Walks over the candidates of \a group from the edges of \a frontier (emptied),
    * breadth first; appends the triangles added to \a added and returns their number. */
-  std::size_t
-  walk(std::vector<Front>& frontier, std::uint32_t group,
-       std::vector<std::uint32_t>& added);
+  std::size_t walk(std::vector<Front>& frontier, std::uint32_t group,
+                   std::vector<std::uint32_t>& added);
 
 private:
   struct Step
@@ -86,10 +83,8 @@ private:
     } outcome;
     std::uint32_t triangle;
   };
-  Step
-  step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch);
-  bool
-  seedTriangle(std::uint32_t& seed);
+  Step step(std::uint32_t t, int slot, std::uint32_t group, bool allow_pinch);
+  bool seedTriangle(std::uint32_t& seed);
 
   MeshState& mesh_;
   PinchResolver& pinches_;

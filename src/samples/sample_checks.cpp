@@ -68,7 +68,8 @@ floatRoundingStep(const std::vector<Eigen::Vector3d>& points)
   const float nearest = static_cast<float>(largest);
   if (!std::isfinite(nearest))
     return std::numeric_limits<double>::infinity(); // beyond what a float holds
-  return static_cast<double>(std::nextafter(nearest, std::numeric_limits<float>::max())) -
+  return static_cast<double>(
+             std::nextafter(nearest, std::numeric_limits<float>::max())) -
          static_cast<double>(nearest);
 }
 

@@ -77,8 +77,7 @@ crossing(Eigen::Vector3d a, double da, Eigen::Vector3d b, double db)
 } // namespace
 
 void
-CoconeCellClipper::resetToBox(const Eigen::Vector3d& axis,
-                              double half_width,
+CoconeCellClipper::resetToBox(const Eigen::Vector3d& axis, double half_width,
                               double half_height)
 {
   const Eigen::Vector3d t1 = axis.unitOrthogonal();
@@ -103,7 +102,8 @@ CoconeCellClipper::clip(const Eigen::Vector3d& normal, double offset, int plane)
 {
   // Corners within a relative 1e-12 of the plane count as on it (kept), so that a
   // plane through a corner does not create slivers of rounding size.
-  const double tolerance = 1e-12 * (std::abs(offset) + normal.norm() * std::sqrt(max_corner_norm2_));
+  const double tolerance =
+      1e-12 * (std::abs(offset) + normal.norm() * std::sqrt(max_corner_norm2_));
   distance_.resize(corners_.size());
   bool any_outside = false;
   for (std::size_t k = 0; k < corners_.size(); ++k) {
@@ -157,7 +157,8 @@ CoconeCellClipper::clip(const Eigen::Vector3d& normal, double offset, int plane)
           next_corners_.push_back({entry_point, a.across});
       }
     }
-    const std::uint32_t count = static_cast<std::uint32_t>(next_corners_.size()) - first;
+    const std::uint32_t count =
+        static_cast<std::uint32_t>(next_corners_.size()) - first;
     if (count >= 3)
       next_faces_.push_back({face.plane, first, count});
     else
@@ -217,8 +218,7 @@ CoconeCellClipper::clipAll(const std::vector<Eigen::Vector3d>& offsets)
 }
 
 CoconeCellClipper::Result
-CoconeCellClipper::measureRadius(const Eigen::Vector3d& axis,
-                                 double sin_theta,
+CoconeCellClipper::measureRadius(const Eigen::Vector3d& axis, double sin_theta,
                                  double limit) const
 {
   double radius2 = 0;

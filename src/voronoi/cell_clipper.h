@@ -25,7 +25,7 @@ class CoconeCellClipper
 public:
   struct Result
   {
-    double radius = 0;          ///< largest distance of a Voronoi edge point in the cocone
+    double radius = 0; ///< largest distance of a Voronoi edge point in the cocone
     bool reached_limit = false; ///< the cocone reaches the box: radius >= limit
   };
 
@@ -44,14 +44,10 @@ public:
    * \param cut if given: the cell is also cut by the plane through the sample normal
    *        to *cut, keeping the side y.cut <= 0, and the edges of that cut count as
    *        Voronoi edges (a rim sample measured on the side where the surface is) */
-  Result
-  coconeRadius(const Eigen::Vector3d& axis,
-               double sin_theta,
-               double limit,
-               double margin,
-               const std::vector<Eigen::Vector3d>& offsets,
-               std::vector<int>* neighbours = nullptr,
-               const Eigen::Vector3d* cut = nullptr);
+  Result coconeRadius(const Eigen::Vector3d& axis, double sin_theta, double limit,
+                      double margin, const std::vector<Eigen::Vector3d>& offsets,
+                      std::vector<int>* neighbours = nullptr,
+                      const Eigen::Vector3d* cut = nullptr);
 
   /** The whole Voronoi cell of the sample at the origin, inside a cube of half size
    * \a extent (far larger than the data: what lies beyond is "at infinity").
@@ -60,26 +56,17 @@ public:
    * \param cut as for coconeRadius
    * \return the cocone radius; reached_limit when the cocone reaches the cube (an
    *         unbounded cocone) */
-  Result
-  fullCell(const Eigen::Vector3d& axis,
-           double sin_theta,
-           double extent,
-           const std::vector<Eigen::Vector3d>& offsets,
-           std::vector<int>& neighbours,
-           const Eigen::Vector3d* cut = nullptr);
+  Result fullCell(const Eigen::Vector3d& axis, double sin_theta, double extent,
+                  const std::vector<Eigen::Vector3d>& offsets,
+                  std::vector<int>& neighbours, const Eigen::Vector3d* cut = nullptr);
 
 private:
-  void
-  clipAll(const std::vector<Eigen::Vector3d>& offsets);
+  void clipAll(const std::vector<Eigen::Vector3d>& offsets);
   /** Resets to the box, clips it by every neighbour and lists the neighbours whose
    * planes bound the result in \a neighbours (if given). */
-  void
-  clipBox(const Eigen::Vector3d& axis,
-          double half_width,
-          double half_height,
-          const std::vector<Eigen::Vector3d>& offsets,
-          std::vector<int>* neighbours,
-          const Eigen::Vector3d* cut);
+  void clipBox(const Eigen::Vector3d& axis, double half_width, double half_height,
+               const std::vector<Eigen::Vector3d>& offsets,
+               std::vector<int>* neighbours, const Eigen::Vector3d* cut);
   Result
   measureRadius(const Eigen::Vector3d& axis, double sin_theta, double limit) const;
 
@@ -105,10 +92,8 @@ private:
     int plane;            // the cut face
   };
 
-  void
-  resetToBox(const Eigen::Vector3d& axis, double half_width, double half_height);
-  void
-  clip(const Eigen::Vector3d& normal, double offset, int plane);
+  void resetToBox(const Eigen::Vector3d& axis, double half_width, double half_height);
+  void clip(const Eigen::Vector3d& normal, double offset, int plane);
 
   std::vector<Corner> corners_, next_corners_;
   std::vector<Face> faces_, next_faces_;

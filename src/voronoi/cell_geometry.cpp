@@ -38,15 +38,20 @@ circumcenter(CellHandle c)
  * which lie scattered in memory: cache misses on cell handles dominated the pass. */
 struct CellTable
 {
-  std::vector<std::array<SampleIndex, 4> > samples; // kNoSample: the infinite vertex
-  std::vector<std::array<std::uint32_t, 4> > neighbours; // the cell across facet i
+  std::vector<std::array<SampleIndex, 4>> samples; // kNoSample: the infinite vertex
+  std::vector<std::array<std::uint32_t, 4>> neighbours; // the cell across facet i
   std::vector<Eigen::Vector3d> centers; // circumcenters of the finite cells
   std::size_t finite = 0;
 
-  bool isFinite(std::uint32_t k) const { return k < finite; }
+  bool
+  isFinite(std::uint32_t k) const
+  {
+    return k < finite;
+  }
 
   /** The position of sample \a s (or kNoSample) in cell \a k; the cell has it. */
-  int indexOf(std::uint32_t k, SampleIndex s) const
+  int
+  indexOf(std::uint32_t k, SampleIndex s) const
   {
     const std::array<SampleIndex, 4>& v = samples[k];
     assert(v[0] == s || v[1] == s || v[2] == s || v[3] == s);
@@ -54,7 +59,8 @@ struct CellTable
   }
 
   /** The facet of cell \a k shared with its neighbour \a n. */
-  int facetTowards(std::uint32_t k, std::uint32_t n) const
+  int
+  facetTowards(std::uint32_t k, std::uint32_t n) const
   {
     const std::array<std::uint32_t, 4>& c = neighbours[k];
     assert(c[0] == n || c[1] == n || c[2] == n || c[3] == n);
@@ -159,7 +165,7 @@ double
 computeCoconeRadius(const CellTable& cells, const std::vector<Eigen::Vector3d>& points,
                     SampleIndex s, const std::uint32_t* star_begin,
                     const std::uint32_t* star_end, const Eigen::Vector3d& axis,
-                    double sin_theta, std::vector<std::array<std::uint8_t, 4> >& marks)
+                    double sin_theta, std::vector<std::array<std::uint8_t, 4>>& marks)
 {
   const Eigen::Vector3d& p = points[s];
   double radius2 = 0;
@@ -262,7 +268,7 @@ computeGeometry(Delaunay& dt, DiagramState& d, double sin_theta)
     return std::make_pair(std::min(b * block_size, count),
                           std::min((b + 1) * block_size, count));
   };
-  std::vector<std::vector<std::uint32_t> > cursor(kBlocks);
+  std::vector<std::vector<std::uint32_t>> cursor(kBlocks);
   tbb::parallel_for(std::size_t(0), kBlocks, [&](std::size_t b) {
     cursor[b].assign(n, 0);
     const auto [first, last] = blockRange(b, cells.samples.size());
@@ -286,7 +292,7 @@ computeGeometry(Delaunay& dt, DiagramState& d, double sin_theta)
         if (s != kNoSample)
           star_cells[cursor[b][s]++] = static_cast<std::uint32_t>(k);
   });
-  std::vector<std::vector<std::uint32_t> >().swap(cursor);
+  std::vector<std::vector<std::uint32_t>>().swap(cursor);
 
   d.pole_vector.assign(n, Eigen::Vector3d::Zero());
   d.positive_pole.assign(n, Eigen::Vector3d::Zero());
@@ -297,7 +303,7 @@ computeGeometry(Delaunay& dt, DiagramState& d, double sin_theta)
 
   // marks[c][j] bit i: vertex j of cell c marks facet i of c. Only the thread handling
   // vertex j writes that byte, so no synchronisation is needed.
-  std::vector<std::array<std::uint8_t, 4> > marks(finite_cells, {0, 0, 0, 0});
+  std::vector<std::array<std::uint8_t, 4>> marks(finite_cells, {0, 0, 0, 0});
   const std::vector<Eigen::Vector3d>& points = d.centered; // the vertices' coordinates
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, samples_in_order.size(), 512),
@@ -323,7 +329,7 @@ computeGeometry(Delaunay& dt, DiagramState& d, double sin_theta)
   // Most facets are marked by none of their vertices: those are skipped on the marks
   // alone, before their neighbouring cell is looked up. Blocks of cells in parallel,
   // joined in cell order.
-  std::vector<std::vector<MarkedTriangle> > found(kBlocks);
+  std::vector<std::vector<MarkedTriangle>> found(kBlocks);
   tbb::parallel_for(std::size_t(0), kBlocks, [&](std::size_t b) {
     const auto [first, last] = blockRange(b, finite_cells);
     for (std::size_t k = first; k < last; ++k)
@@ -356,9 +362,9 @@ computeGeometry(Delaunay& dt, DiagramState& d, double sin_theta)
 
   // Stitching and decimation ask the triangulation for neighbours later: they get the
   // cells' samples and the stars, not the rest of the table.
-  std::vector<std::array<std::uint32_t, 4> >().swap(cells.neighbours);
+  std::vector<std::array<std::uint32_t, 4>>().swap(cells.neighbours);
   std::vector<Eigen::Vector3d>().swap(cells.centers);
-  std::vector<std::array<std::uint8_t, 4> >().swap(marks);
+  std::vector<std::array<std::uint8_t, 4>>().swap(marks);
   d.stars.cell_samples = std::move(cells.samples);
   d.stars.offsets = std::move(star_offsets);
   d.stars.cells = std::move(star_cells);
@@ -371,7 +377,8 @@ computeGeometry(Delaunay& dt, DiagramState& d, double sin_theta)
   for (std::size_t i = 0; i < n; ++i)
     d.triangle_offsets[i + 1] += d.triangle_offsets[i];
   d.triangle_ids.resize(d.triangle_offsets[n]);
-  std::vector<std::uint32_t> fill(d.triangle_offsets.begin(), d.triangle_offsets.end() - 1);
+  std::vector<std::uint32_t> fill(d.triangle_offsets.begin(),
+                                  d.triangle_offsets.end() - 1);
   for (std::size_t t = 0; t < d.triangles.size(); ++t)
     for (const SampleIndex s : d.triangles[t].vertex)
       d.triangle_ids[fill[s]++] = static_cast<std::uint32_t>(t);

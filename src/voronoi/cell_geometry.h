@@ -13,8 +13,7 @@ namespace detail {
  * (whose vertices carry their sample index), and the marked triangles with their
  * incidence lists, into \a d; the stars go to d.stars. Clears \a dt once its cells
  * are read. \a sin_theta is the sine of the cocone angle. */
-void
-computeGeometry(Delaunay& dt, DiagramState& d, double sin_theta);
+void computeGeometry(Delaunay& dt, DiagramState& d, double sin_theta);
 
 } // namespace detail
 } // namespace cocone

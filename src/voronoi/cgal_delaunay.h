@@ -48,18 +48,14 @@ public:
   };
 
   VoronoiCellBase() : Cb() {}
-  VoronoiCellBase(Vertex_handle v0, Vertex_handle v1, Vertex_handle v2, Vertex_handle v3)
-  : Cb(v0, v1, v2, v3)
+  VoronoiCellBase(Vertex_handle v0, Vertex_handle v1, Vertex_handle v2,
+                  Vertex_handle v3)
+    : Cb(v0, v1, v2, v3)
   {}
-  VoronoiCellBase(Vertex_handle v0,
-                  Vertex_handle v1,
-                  Vertex_handle v2,
-                  Vertex_handle v3,
-                  Cell_handle n0,
-                  Cell_handle n1,
-                  Cell_handle n2,
+  VoronoiCellBase(Vertex_handle v0, Vertex_handle v1, Vertex_handle v2,
+                  Vertex_handle v3, Cell_handle n0, Cell_handle n1, Cell_handle n2,
                   Cell_handle n3)
-  : Cb(v0, v1, v2, v3, n0, n1, n2, n3)
+    : Cb(v0, v1, v2, v3, n0, n1, n2, n3)
   {}
 
   /** Index into per-cell arrays; kNoCellIndex when the cell has none. */
@@ -83,7 +79,6 @@ using Tds = CGAL::Triangulation_data_structure_3<VertexBase, CellBase>;
 using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, Tds>;
 using VertexHandle = Delaunay::Vertex_handle;
 using CellHandle = Delaunay::Cell_handle;
-
 
 inline Eigen::Vector3d
 toEigen(const Point& p)

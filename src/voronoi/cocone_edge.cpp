@@ -28,17 +28,14 @@ classify(const Eigen::Vector3d& x, const Eigen::Vector3d& axis, double sin_theta
 } // namespace
 
 EdgeInCocone
-clipVoronoiEdge(const Eigen::Vector3d& start,
-                const Eigen::Vector3d& direction,
-                bool is_ray,
-                const Eigen::Vector3d& axis,
-                double sin_theta)
+clipVoronoiEdge(const Eigen::Vector3d& start, const Eigen::Vector3d& direction,
+                bool is_ray, const Eigen::Vector3d& axis, double sin_theta)
 {
   EdgeInCocone result;
   const ConeSide side_start = classify(start, axis, sin_theta);
   // A ray's far end is classified by its direction.
-  const ConeSide side_end =
-      classify(is_ray ? direction : Eigen::Vector3d(start + direction), axis, sin_theta);
+  const ConeSide side_end = classify(
+      is_ray ? direction : Eigen::Vector3d(start + direction), axis, sin_theta);
   // Each nappe of the double cone is convex: a segment with both ends in the same nappe
   // stays in it; otherwise it crosses the cocone.
   result.meets = side_start == ConeSide::inside || side_end == ConeSide::inside ||

@@ -20,20 +20,17 @@ enum class ConeSide
 /** How a Voronoi edge (segment or ray, relative to the sample) meets a cocone. */
 struct EdgeInCocone
 {
-  bool meets = false;      // some point of the edge lies in the cocone
-  bool unbounded = false;  // the ray's direction lies in the cocone: r_p is infinite
+  bool meets = false;       // some point of the edge lies in the cocone
+  bool unbounded = false;   // the ray's direction lies in the cocone: r_p is infinite
   double max_distance2 = 0; // largest squared distance from p of a point inside
 };
 
-/** Clips the Voronoi edge start + t * direction (t in [0, 1] for a segment, t >= 0 for a
- * ray), given relative to the sample, against the cocone of axis \a axis (unit) and
+/** Clips the Voronoi edge start + t * direction (t in [0, 1] for a segment, t >= 0 for
+ * a ray), given relative to the sample, against the cocone of axis \a axis (unit) and
  * angle theta (sin_theta = sin(theta)). */
 EdgeInCocone
-clipVoronoiEdge(const Eigen::Vector3d& start,
-                const Eigen::Vector3d& direction,
-                bool is_ray,
-                const Eigen::Vector3d& axis,
-                double sin_theta);
+clipVoronoiEdge(const Eigen::Vector3d& start, const Eigen::Vector3d& direction,
+                bool is_ray, const Eigen::Vector3d& axis, double sin_theta);
 
 } // namespace detail
 } // namespace cocone

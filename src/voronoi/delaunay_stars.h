@@ -60,7 +60,7 @@ private:
 struct DelaunayStars
 {
   /** Per cell, its four samples; kNoSample stands for the infinite vertex. */
-  std::vector<std::array<SampleIndex, 4> > cell_samples;
+  std::vector<std::array<SampleIndex, 4>> cell_samples;
   /** CSR by sample: the cells incident to sample s are cells[offsets[s]] to
    * cells[offsets[s + 1] - 1], ascending; empty for duplicates. */
   std::vector<std::uint32_t> offsets, cells;
@@ -74,7 +74,8 @@ struct DelaunayStars
   /** Appends the finite Delaunay neighbours of sample \a s (a representative) to
    * \a out, each once, unsorted; \a seen is scratch. */
   void
-  appendNeighbours(SampleIndex s, SampleMarks& seen, std::vector<SampleIndex>& out) const
+  appendNeighbours(SampleIndex s, SampleMarks& seen,
+                   std::vector<SampleIndex>& out) const
   {
     seen.clear();
     for (std::uint32_t k = offsets[s]; k < offsets[s + 1]; ++k)
@@ -86,7 +87,7 @@ struct DelaunayStars
   void
   clear()
   {
-    std::vector<std::array<SampleIndex, 4> >().swap(cell_samples);
+    std::vector<std::array<SampleIndex, 4>>().swap(cell_samples);
     std::vector<std::uint32_t>().swap(offsets);
     std::vector<std::uint32_t>().swap(cells);
   }

@@ -53,7 +53,7 @@ spatialOrder(const std::vector<Eigen::Vector3d>& points, unsigned threads)
   constexpr double kLevels = double((1u << 21) - 1);
   const double scale = extent > 0 ? kLevels / extent : 0;
   // Sorting (key, position) pairs breaks ties by position: the order is stable.
-  std::vector<std::pair<std::uint64_t, SampleIndex> > keyed(n);
+  std::vector<std::pair<std::uint64_t, SampleIndex>> keyed(n);
   detail::runInArena(threads, [&] {
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {

@@ -26,12 +26,11 @@ namespace cocone {
 using namespace detail;
 
 VoronoiCocone::VoronoiCocone(const VoronoiParameters& parameters)
-: impl_(new Impl), parameters_(parameters)
+  : impl_(new Impl), parameters_(parameters)
 {}
 VoronoiCocone::~VoronoiCocone() = default;
 VoronoiCocone::VoronoiCocone(VoronoiCocone&&) noexcept = default;
-VoronoiCocone&
-VoronoiCocone::operator=(VoronoiCocone&&) noexcept = default;
+VoronoiCocone& VoronoiCocone::operator=(VoronoiCocone&&) noexcept = default;
 
 Status
 VoronoiCocone::setCoconeAngle(double theta)
@@ -202,7 +201,8 @@ VoronoiCocone::trianglesAround(SampleIndex i) const
 }
 
 void
-VoronoiCocone::coconeNeighbours(SampleIndex i, std::vector<SampleIndex>& neighbours) const
+VoronoiCocone::coconeNeighbours(SampleIndex i,
+                                std::vector<SampleIndex>& neighbours) const
 {
   neighbours.clear();
   const SampleIndex r = impl_->representative[i];
@@ -221,7 +221,8 @@ VoronoiCocone::coconeNeighbours(SampleIndex i, std::vector<SampleIndex>& neighbo
 }
 
 void
-VoronoiCocone::delaunayNeighbours(SampleIndex i, std::vector<SampleIndex>& neighbours) const
+VoronoiCocone::delaunayNeighbours(SampleIndex i,
+                                  std::vector<SampleIndex>& neighbours) const
 {
   neighbours.clear();
   if (impl_->stars.empty())
@@ -295,7 +296,8 @@ namespace {
  * its own, whose message names it. */
 Status
 buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
-             const std::vector<Eigen::Vector3d>& points, const ProgressCallback& callback)
+             const std::vector<Eigen::Vector3d>& points,
+             const ProgressCallback& callback)
 {
   // The triangulation takes about three quarters of compute(), the geometry the rest.
   const StageProgress progress(callback, 0, 1);
@@ -315,7 +317,8 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
                     " is outside " + kCoconeAngleRange.text());
   const std::size_t n = points.size();
   if (n >= static_cast<std::size_t>(kNoSample))
-    return fail(Status::too_many_points, "more points than 32-bit sample indices address");
+    return fail(Status::too_many_points,
+                "more points than 32-bit sample indices address");
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < n; ++i) {
     if (!points[i].allFinite()) {
@@ -327,7 +330,8 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
   }
   if (n < 4)
     return fail(Status::too_few_points,
-                "need at least 4 points for a 3D Voronoi diagram, got " + std::to_string(n));
+                "need at least 4 points for a 3D Voronoi diagram, got " +
+                    std::to_string(n));
   // Decide the dimension on the points as given, with exact predicates: translating
   // them to their centroid rounds each coordinate, which can lift exactly coplanar
   // points off their plane by 1e-15 and hide the degeneracy from the triangulation.
@@ -409,11 +413,13 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
         const Point query(d.centered[i].x(), d.centered[i].y(), d.centered[i].z());
         hint = dt.locate(query, type, li, lj, hint);
         if (type != Delaunay::VERTEX)
-          throw std::runtime_error("a point missing from the triangulation is no vertex");
+          throw std::runtime_error(
+              "a point missing from the triangulation is no vertex");
         owner[i] = hint->vertex(li);
         // CGAL kept whichever copy its spatial sort met first; name the group after
         // its smallest index instead.
-        owner[i]->info() = std::min<SampleIndex>(owner[i]->info(), static_cast<SampleIndex>(i));
+        owner[i]->info() =
+            std::min<SampleIndex>(owner[i]->info(), static_cast<SampleIndex>(i));
       }
       d.representative.resize(n);
       for (std::size_t i = 0; i < n; ++i)
@@ -425,8 +431,8 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
     return fail(status, message);
 
   if (d.unique_count < 4)
-    return fail(Status::too_few_points,
-                "need at least 4 distinct points, got " + std::to_string(d.unique_count));
+    return fail(Status::too_few_points, "need at least 4 distinct points, got " +
+                                            std::to_string(d.unique_count));
   if (dt.dimension() < 3) {
     const int dim = dt.dimension();
     return fail(Status::degenerate_dimension,

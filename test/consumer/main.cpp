@@ -41,8 +41,8 @@ main()
     triangles.push_back({static_cast<std::uint32_t>(polygon.vertices[0]),
                          static_cast<std::uint32_t>(polygon.vertices[1]),
                          static_cast<std::uint32_t>(polygon.vertices[2])});
-  const pcl::cocone::MeshTopology topology
-      = pcl::cocone::analyzeTriangleMesh(triangles);
+  const pcl::cocone::MeshTopology topology =
+      pcl::cocone::analyzeTriangleMesh(triangles);
   std::printf("consumer: %zu triangles, closed %s, manifold %s\n", topology.triangles,
               topology.isClosed() ? "yes" : "no", topology.isManifold() ? "yes" : "no");
   if (!topology.isClosed() || !topology.isManifold())

@@ -59,7 +59,8 @@ main()
       edges.emplace(std::min(a, b), std::max(a, b));
       vertices.insert(a);
     }
-  const long euler = static_cast<long>(vertices.size()) - static_cast<long>(edges.size()) +
+  const long euler = static_cast<long>(vertices.size()) -
+                     static_cast<long>(edges.size()) +
                      static_cast<long>(polygons.size());
 
   std::printf("core consumer: %zu flags (%zu near the pole), %zu of %d kept, %zu "

@@ -61,7 +61,7 @@ shuffledCloud(const pcl::PointCloud<PointT>& cloud, std::uint32_t seed,
   order.resize(cloud.size());
   std::iota(order.begin(), order.end(), std::size_t(0));
   std::shuffle(order.begin(), order.end(), std::mt19937(seed));
-  auto shuffled = pcl::make_shared<pcl::PointCloud<PointT> >();
+  auto shuffled = pcl::make_shared<pcl::PointCloud<PointT>>();
   for (const std::size_t i : order)
     shuffled->push_back(cloud[i]);
   return shuffled;

@@ -25,7 +25,6 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
 using Triangle = Kernel::Triangle_3;
 
-
 std::vector<Point>
 toCgal(const std::vector<Eigen::Vector3d>& points)
 {
@@ -89,8 +88,7 @@ distancesToMesh(const std::vector<Eigen::Vector3d>& queries,
 
 std::vector<Eigen::Vector3d>
 samplePointsOnMesh(const std::vector<Eigen::Vector3d>& points,
-                   const std::vector<TriangleIndices>& triangles,
-                   double per_triangle)
+                   const std::vector<TriangleIndices>& triangles, double per_triangle)
 {
   checkIndices(points.size(), triangles);
   std::vector<double> cumulative(triangles.size() + 1, 0.0);

@@ -26,13 +26,12 @@ struct DistanceStats
   double mean = 0;
   double rms = 0;
 };
-DistanceStats
-distancesToMesh(const std::vector<Eigen::Vector3d>& queries,
-                const std::vector<Eigen::Vector3d>& points,
-                const std::vector<TriangleIndices>& triangles);
+DistanceStats distancesToMesh(const std::vector<Eigen::Vector3d>& queries,
+                              const std::vector<Eigen::Vector3d>& points,
+                              const std::vector<TriangleIndices>& triangles);
 
-/** Points sampled uniformly (by area, deterministic) on a triangle mesh: \a per_triangle
- * points per triangle on average, plus the vertices used. */
+/** Points sampled uniformly (by area, deterministic) on a triangle mesh: \a
+ * per_triangle points per triangle on average, plus the vertices used. */
 std::vector<Eigen::Vector3d>
 samplePointsOnMesh(const std::vector<Eigen::Vector3d>& points,
                    const std::vector<TriangleIndices>& triangles,
@@ -40,25 +39,22 @@ samplePointsOnMesh(const std::vector<Eigen::Vector3d>& points,
 
 /** Symmetric Hausdorff distance between two meshes, estimated with samplePointsOnMesh
  * on each side. */
-double
-hausdorffDistance(const std::vector<Eigen::Vector3d>& points_a,
-                  const std::vector<TriangleIndices>& triangles_a,
-                  const std::vector<Eigen::Vector3d>& points_b,
-                  const std::vector<TriangleIndices>& triangles_b);
+double hausdorffDistance(const std::vector<Eigen::Vector3d>& points_a,
+                         const std::vector<TriangleIndices>& triangles_a,
+                         const std::vector<Eigen::Vector3d>& points_b,
+                         const std::vector<TriangleIndices>& triangles_b);
 
 /** For a closed, consistently oriented mesh: the signed volume (positive when the
  * triangles face outward). */
-double
-signedVolume(const std::vector<Eigen::Vector3d>& points,
-             const std::vector<TriangleIndices>& triangles);
+double signedVolume(const std::vector<Eigen::Vector3d>& points,
+                    const std::vector<TriangleIndices>& triangles);
 
 /** Asserts (with gtest EXPECT_*) everything every reconstruction must satisfy: only
  * manifold edges and vertices, consistent orientation, no self-intersection; reports
  * the topology in the test output (RecordProperty and stdout). Returns the topology. */
-MeshTopology
-expectValidSurface(const std::vector<Eigen::Vector3d>& points,
-                   const std::vector<TriangleIndices>& triangles,
-                   const std::string& label);
+MeshTopology expectValidSurface(const std::vector<Eigen::Vector3d>& points,
+                                const std::vector<TriangleIndices>& triangles,
+                                const std::string& label);
 
 } // namespace test
 } // namespace cocone

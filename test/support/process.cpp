@@ -39,10 +39,8 @@ readText(const std::filesystem::path& path)
 }
 
 ToolRun
-runTool(const std::string& launcher,
-        const std::filesystem::path& program,
-        const std::vector<std::string>& args,
-        const std::filesystem::path& out,
+runTool(const std::string& launcher, const std::filesystem::path& program,
+        const std::vector<std::string>& args, const std::filesystem::path& out,
         const std::filesystem::path& err)
 {
   std::string command = launcher + shellQuote(program.string());
@@ -71,7 +69,8 @@ expectOneLineFailure(const ToolRun& result, const std::string& expected)
 void
 expectSuccess(const ToolRun& result)
 {
-  EXPECT_EQ(result.exit_code, 0) << "stdout: " << result.out << "\nstderr: " << result.err;
+  EXPECT_EQ(result.exit_code, 0)
+      << "stdout: " << result.out << "\nstderr: " << result.err;
   EXPECT_EQ(result.err, "");
 }
 

@@ -76,7 +76,7 @@ class GridHash
 {
 public:
   GridHash(const std::vector<Eigen::Vector3d>& points, double cell_size)
-  : inverse_cell_(1.0 / cell_size)
+    : inverse_cell_(1.0 / cell_size)
   {
     std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(points.size());
     for (std::size_t i = 0; i < points.size(); ++i)
@@ -222,7 +222,7 @@ class EliminationHeap
 {
 public:
   explicit EliminationHeap(const std::vector<double>& weight)
-  : nodes_(weight.size()), place_(weight.size())
+    : nodes_(weight.size()), place_(weight.size())
   {
     for (std::size_t i = 0; i < nodes_.size(); ++i)
       nodes_[i] = Node{weight[i], static_cast<std::uint32_t>(i)};
@@ -297,8 +297,7 @@ private:
  * the two radii, so that a dense region does not erode its sparser neighbour. */
 std::vector<std::uint32_t>
 eliminateSamples(const std::vector<Eigen::Vector3d>& candidates,
-                 const std::vector<double>& radius,
-                 std::size_t n)
+                 const std::vector<double>& radius, std::size_t n)
 {
   const std::size_t m = candidates.size();
   std::vector<std::uint32_t> kept;
@@ -367,10 +366,7 @@ using Draw = std::function<void(Random&, Eigen::Vector3d&, Eigen::Vector3d&)>;
  * down to n, normal jitter. \a weighted_area is the integral of the density over the
  * surface (the area when uniform). */
 void
-sampleSurface(SampledShape& shape,
-              std::size_t n,
-              std::uint32_t seed,
-              const Draw& draw,
+sampleSurface(SampledShape& shape, std::size_t n, std::uint32_t seed, const Draw& draw,
               double weighted_area,
               const std::function<double(const Eigen::Vector3d&)>& density = {})
 {
@@ -488,7 +484,7 @@ class CurveDistance
 {
 public:
   CurveDistance(CurvePoint (*curve)(double), std::size_t samples)
-  : curve_(curve), step_(2 * kPi / static_cast<double>(samples))
+    : curve_(curve), step_(2 * kPi / static_cast<double>(samples))
   {
     for (std::size_t k = 0; k < samples; ++k)
       polygon_.add(curve_(step_ * static_cast<double>(k)).p);

@@ -28,8 +28,7 @@ struct SampledShape
   int boundary_loops = 0;
 
   /** sqrt(area / n): the "spacing" the tests measure distances in. */
-  double
-  spacing() const;
+  double spacing() const;
 
   /** Dense points (spacing/4 apart or closer) along the true rim of an open shape, and
    * along the sharp edges of the cube; empty for smooth closed shapes. */
@@ -56,46 +55,37 @@ struct SampledShape
 // co-spherical (exact samples of analytic surfaces make Delaunay slow and degenerate).
 
 /** Unit sphere centred at the origin. */
-SampledShape
-sampleSphere(std::size_t n, std::uint32_t seed = 1);
+SampledShape sampleSphere(std::size_t n, std::uint32_t seed = 1);
 
 /** Sphere of radius 1 whose cap within 40 degrees of +z is sampled 8 times denser than
  * the rest (per unit area). */
-SampledShape
-sampleSphereWithDenseCap(std::size_t n, std::uint32_t seed = 1);
+SampledShape sampleSphereWithDenseCap(std::size_t n, std::uint32_t seed = 1);
 
 /** Torus around the z axis, major radius 1, minor radius 0.35 (genus 1). */
-SampledShape
-sampleTorus(std::size_t n, std::uint32_t seed = 1);
+SampledShape sampleTorus(std::size_t n, std::uint32_t seed = 1);
 
 /** Tube of radius 0.25 around the trefoil knot
  * (sin t + 2 sin 2t, cos t - 2 cos 2t, -sin 3t), t in [0, 2 pi): the paper's KNOT
  * (closed, genus 1). */
-SampledShape
-sampleTrefoilKnot(std::size_t n, std::uint32_t seed = 1);
+SampledShape sampleTrefoilKnot(std::size_t n, std::uint32_t seed = 1);
 
 /** A closed genus-3 surface: a rounded slab (about 3.9 x 1.7 x 0.5: the points within
  * 0.25 of a planar stadium) with three round through-holes in a row (radius 0.5 at the
  * flat faces, 0.25 at the waist). Local feature size at least 0.25. */
-SampledShape
-sampleGenus3(std::size_t n, std::uint32_t seed = 1);
+SampledShape sampleGenus3(std::size_t n, std::uint32_t seed = 1);
 
 /** Upper unit hemisphere z >= 0 (open: one boundary loop, the equator). */
-SampledShape
-sampleHemisphere(std::size_t n, std::uint32_t seed = 1);
+SampledShape sampleHemisphere(std::size_t n, std::uint32_t seed = 1);
 
 /** Monkey saddle z = x^3 - 3 x y^2 over the unit disc (the paper's MONKEYSADDLE; open:
  * one boundary loop). */
-SampledShape
-sampleMonkeySaddle(std::size_t n, std::uint32_t seed = 1);
+SampledShape sampleMonkeySaddle(std::size_t n, std::uint32_t seed = 1);
 
 /** Open cylinder of radius 0.5 and height 2 around the z axis (two boundary loops). */
-SampledShape
-sampleOpenCylinder(std::size_t n, std::uint32_t seed = 1);
+SampledShape sampleOpenCylinder(std::size_t n, std::uint32_t seed = 1);
 
 /** Surface of the cube [-1, 1]^3: closed, genus 0, 12 sharp edges. */
-SampledShape
-sampleCube(std::size_t n, std::uint32_t seed = 1);
+SampledShape sampleCube(std::size_t n, std::uint32_t seed = 1);
 
 } // namespace test
 } // namespace cocone

@@ -73,14 +73,16 @@ public:
 
   /** \brief Default parameters: rho 0.99, alpha pi/6, theta pi/8, rim row completed,
    * no band, automatic threads. */
-  BoundarySampleEstimation() { Feature<PointInT, PointOutT>::feature_name_ = "BoundarySampleEstimation"; }
+  BoundarySampleEstimation()
+  {
+    Feature<PointInT, PointOutT>::feature_name_ = "BoundarySampleEstimation";
+  }
 
   /** \brief Set rho, the ratio bound of the flatness test r_p / h_p <= rho.
    * Dimensionless; default 0.99 (the paper's value for all its data); valid range
    * (0, 10]. Smaller values flag more samples. Out of range: PCL_ERROR, unchanged.
    * \param[in] rho the ratio bound, dimensionless, in (0, 10] */
-  void
-  setRatioBound(double rho);
+  void setRatioBound(double rho);
   /** \brief Get rho (see setRatioBound).
    * \return the ratio bound, dimensionless, in (0, 10]; default 0.99 */
   double
@@ -93,8 +95,7 @@ public:
    * samples. Radians; default pi/6; valid range (0, pi/2]. Smaller values flag more
    * samples near curved or sharp regions. Out of range: PCL_ERROR, unchanged.
    * \param[in] alpha the normal agreement angle in radians, in (0, pi/2] */
-  void
-  setNormalAngle(double alpha);
+  void setNormalAngle(double alpha);
   /** \brief Get alpha (see setNormalAngle).
    * \return the normal agreement angle in radians, in (0, pi/2]; default pi/6 */
   double
@@ -107,8 +108,7 @@ public:
    * cell within theta of the plane orthogonal to the pole vector. Radians; default
    * pi/8; valid range (0, pi/2). Out of range: PCL_ERROR, unchanged.
    * \param[in] theta the cocone angle in radians, in (0, pi/2) */
-  void
-  setCoconeAngle(double theta);
+  void setCoconeAngle(double theta);
   /** \brief Get theta (see setCoconeAngle).
    * \return the cocone angle in radians, in (0, pi/2); default pi/8 */
   double
@@ -122,8 +122,7 @@ public:
    * In rings; default 0 (BOUNDARY as published); valid range 0 to 64. Out of range:
    * PCL_ERROR, unchanged.
    * \param[in] rings the number of rings, 0 to 64 */
-  void
-  setBoundaryBandRings(unsigned rings);
+  void setBoundaryBandRings(unsigned rings);
   /** \brief Get the number of band rings (see setBoundaryBandRings).
    * \return the number of rings, 0 to 64; default 0 */
   unsigned
@@ -281,26 +280,21 @@ protected:
    * \return false (with PCL_ERROR and getErrorMessage()) without an input cloud, with
    *         invalid indices, an empty cloud, or a search surface other than the input;
    *         true otherwise */
-  bool
-  initCompute() override;
+  bool initCompute() override;
 
   /** \brief Runs BOUNDARY on every finite input point and fills one row per index.
    * \param[out] output the boundary flags, one row per index (already sized by
    *             pcl::Feature::compute); emptied when no Voronoi diagram exists */
-  void
-  computeFeature(PointCloudOut& output) override;
+  void computeFeature(PointCloudOut& output) override;
 
 private:
-  void
-  clearResults(std::size_t rows);
+  void clearResults(std::size_t rows);
 
   /** computeFeature without its guard against running out of memory. */
-  void
-  estimate(PointCloudOut& output);
+  void estimate(PointCloudOut& output);
 
   /** Fails the run: the message to getErrorMessage() and PCL_ERROR, empty output. */
-  void
-  fail(const std::string& message, PointCloudOut& output);
+  void fail(const std::string& message, PointCloudOut& output);
 
   cocone::VoronoiParameters voronoi_parameters_;
   cocone::BoundaryParameters parameters_;

@@ -79,8 +79,7 @@ public:
    * cell within theta of the plane orthogonal to the pole vector. Radians; default pi/8
    * (the paper's value); valid range (0, pi/2). Out of range: PCL_ERROR, unchanged.
    * \param[in] theta the cocone angle in radians, in (0, pi/2) */
-  void
-  setCoconeAngle(double theta);
+  void setCoconeAngle(double theta);
   /** \brief Get theta (see setCoconeAngle).
    * \return the cocone angle in radians, in (0, pi/2); default pi/8 */
   double
@@ -93,8 +92,7 @@ public:
    * Dimensionless; default 0.99; valid range (0, 10]. Smaller values flag more boundary
    * samples. Out of range: PCL_ERROR, unchanged.
    * \param[in] rho the ratio bound, dimensionless, in (0, 10] */
-  void
-  setRatioBound(double rho);
+  void setRatioBound(double rho);
   /** \brief Get rho (see setRatioBound).
    * \return the ratio bound, dimensionless, in (0, 10]; default 0.99 */
   double
@@ -107,8 +105,7 @@ public:
    * between pole lines of neighbouring flat samples. Radians; default pi/6; valid range
    * (0, pi/2]. Out of range: PCL_ERROR, unchanged.
    * \param[in] alpha the normal agreement angle in radians, in (0, pi/2] */
-  void
-  setNormalAngle(double alpha);
+  void setNormalAngle(double alpha);
   /** \brief Get alpha (see setNormalAngle).
    * \return the normal agreement angle in radians, in (0, pi/2]; default pi/6 */
   double
@@ -124,8 +121,7 @@ public:
    * [0.5, 1000]. Raise it to close larger holes (e.g. a scan's cut), lower it to keep
    * smaller ones open. Out of range: PCL_ERROR, unchanged.
    * \param[in] ratio the size ratio, in local sample spacings, in [0.5, 1000] */
-  void
-  setTrueBoundaryRatio(double ratio);
+  void setTrueBoundaryRatio(double ratio);
   /** \brief Get the true-boundary size ratio (see setTrueBoundaryRatio).
    * \return the size ratio in local sample spacings, in [0.5, 1000]; default 2 */
   double
@@ -168,8 +164,8 @@ public:
   }
 
   /** \brief Set a callback for the progress of reconstruct(): it is called from the
-   * thread that called reconstruct() with the share of the run done (0 to 1), a few times
-   * per stage; returning false cancels the run, which then fails with the message
+   * thread that called reconstruct() with the share of the run done (0 to 1), a few
+   * times per stage; returning false cancels the run, which then fails with the message
    * "cancelled" (getErrorMessage()). The same type as cocone::ProgressCallback.
    * \param[in] callback the callback; an empty one (default) is never called */
   void
@@ -324,24 +320,20 @@ protected:
   /** \brief Reconstructs into output.polygons (pcl::MeshConstruction::reconstruct has
    * already copied the input cloud into output.cloud).
    * \param[out] output the mesh; its polygons' vertex ids are input cloud indices */
-  void
-  performReconstruction(pcl::PolygonMesh& output) override;
+  void performReconstruction(pcl::PolygonMesh& output) override;
 
   /** \brief Reconstructs the surface through the selected finite points.
    * \param[out] polygons oriented triangles as input cloud indices (cleared first);
    *             empty when no Voronoi diagram exists */
-  void
-  performReconstruction(std::vector<pcl::Vertices>& polygons) override;
+  void performReconstruction(std::vector<pcl::Vertices>& polygons) override;
 
 private:
   /** performReconstruction without its guard against running out of memory. */
-  void
-  reconstructSelection(std::vector<pcl::Vertices>& polygons);
+  void reconstructSelection(std::vector<pcl::Vertices>& polygons);
 
   /** Fails the run: the message to getErrorMessage() and PCL_ERROR, every result
    * empty, every selected index unused. */
-  void
-  fail(const std::string& message);
+  void fail(const std::string& message);
 
   cocone::VoronoiParameters voronoi_parameters_;
   cocone::ReconstructionParameters parameters_;

@@ -200,12 +200,8 @@ isValid(const DecimationParameters& parameters)
  * \param[in] current the value kept when \a value is refused (only printed)
  * \return true when \a value lies in \a range; false (after PCL_ERROR) otherwise */
 inline bool
-acceptParameter(const std::string& class_name,
-                const char* setter,
-                const char* name,
-                double value,
-                const ParameterRange& range,
-                double current)
+acceptParameter(const std::string& class_name, const char* setter, const char* name,
+                double value, const ParameterRange& range, double current)
 {
   if (range.contains(value))
     return true;

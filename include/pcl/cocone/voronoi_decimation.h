@@ -74,7 +74,7 @@ public:
    * \param[in] extract_removed_indices whether getRemovedIndices() is filled (default
    *            false) */
   explicit VoronoiDecimation(bool extract_removed_indices = false)
-  : FilterIndices<PointT>(extract_removed_indices)
+    : FilterIndices<PointT>(extract_removed_indices)
   {
     Filter<PointT>::filter_name_ = "VoronoiDecimation";
   }
@@ -84,8 +84,7 @@ public:
    * paper removed 56% to 83% of its scans at 0.3 and 65% to 89% at 0.4). Out of range:
    * PCL_ERROR, unchanged.
    * \param[in] rho the ratio bound, dimensionless, in (0, 10] */
-  void
-  setRatioBound(double rho);
+  void setRatioBound(double rho);
   /** \brief Get rho (see setRatioBound).
    * \return the ratio bound, dimensionless, in (0, 10]; default 0.3 */
   double
@@ -98,8 +97,7 @@ public:
    * cell within theta of the plane orthogonal to the pole vector. Radians; default
    * pi/8; valid range (0, pi/2). Out of range: PCL_ERROR, unchanged.
    * \param[in] theta the cocone angle in radians, in (0, pi/2) */
-  void
-  setCoconeAngle(double theta);
+  void setCoconeAngle(double theta);
   /** \brief Get theta (see setCoconeAngle).
    * \return the cocone angle in radians, in (0, pi/2); default pi/8 */
   double
@@ -134,8 +132,7 @@ public:
    * the bunny at rho 0.3).
    * \param[in] iterations the number of rounds, in [0, 1000]; default 10; other values
    *            are refused with PCL_ERROR and the current value is kept */
-  void
-  setRelaxationIterations(unsigned iterations);
+  void setRelaxationIterations(unsigned iterations);
   /** \brief Get the number of relaxation rounds (see setRelaxationIterations).
    * \return the number of rounds; 10 by default */
   unsigned
@@ -187,9 +184,8 @@ public:
    *             a smaller one keeps. Cleared first; empty on failure
    * \return true on success, also for an empty \a ratio_bounds (then nothing is
    *         computed); false (with PCL_ERROR) on bad input or parameters */
-  bool
-  computeLevelsOfDetail(const std::vector<double>& ratio_bounds,
-                        std::vector<pcl::Indices>& kept);
+  bool computeLevelsOfDetail(const std::vector<double>& ratio_bounds,
+                             std::vector<pcl::Indices>& kept);
 
   /** \brief After filter() or computeLevelsOfDetail(): for each input cloud point, the
    * ratio bound from which on it is removed (kept at rho exactly when its level is >=
@@ -248,17 +244,14 @@ protected:
    * \param[out] indices the kept input cloud indices in selection order (with
    *             setNegative(true): the removed finite ones); never a non-finite point;
    *             empty when no Voronoi diagram exists */
-  void
-  applyFilter(Indices& indices) override;
+  void applyFilter(Indices& indices) override;
 
 private:
   /** Runs DECIMATE on the selected points with \a parameters; fills removal_levels_.
    * False (with PCL_ERROR and getErrorMessage()) when it fails. */
-  bool
-  decimate(const cocone::DecimationParameters& parameters);
+  bool decimate(const cocone::DecimationParameters& parameters);
   /** decimate() without its guard against running out of memory. */
-  bool
-  decimateSelection(const cocone::DecimationParameters& parameters);
+  bool decimateSelection(const cocone::DecimationParameters& parameters);
 
   cocone::VoronoiParameters voronoi_parameters_;
   cocone::DecimationParameters parameters_;

@@ -33,11 +33,10 @@ namespace cocone {
  * \return Status::ok; Status::not_computed when \a voronoi holds no diagram;
  *         Status::invalid_parameter when a value of \a parameters is outside its
  *         range (isValid); Status::internal_error when memory ran out */
-PCL_COCONE_EXPORT Status
-detectBoundarySamples(const VoronoiCocone& voronoi,
-                      const BoundaryParameters& parameters,
-                      std::vector<std::uint8_t>& is_boundary,
-                      std::string* message = nullptr);
+PCL_COCONE_EXPORT Status detectBoundarySamples(const VoronoiCocone& voronoi,
+                                               const BoundaryParameters& parameters,
+                                               std::vector<std::uint8_t>& is_boundary,
+                                               std::string* message = nullptr);
 
 } // namespace cocone
 } // namespace pcl

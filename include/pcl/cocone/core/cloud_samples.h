@@ -115,11 +115,13 @@ constexpr double kCoarseRoundingShare = 0.05;
  *            unknown
  * \param[in] where_far_points_go how the class reports far points, e.g. "listed as
  *            unused"
- * \return the warning text, without a final newline; empty when there is nothing to say */
+ * \return the warning text, without a final newline; empty when there is nothing to say
+ */
 template <typename PointT>
 std::string
-describeSampleProblems(const pcl::PointCloud<PointT>& cloud, const CloudSamples& samples,
-                       double spacing, const char* where_far_points_go)
+describeSampleProblems(const pcl::PointCloud<PointT>& cloud,
+                       const CloudSamples& samples, double spacing,
+                       const char* where_far_points_go)
 {
   std::string text;
   char buffer[512];
@@ -130,18 +132,19 @@ describeSampleProblems(const pcl::PointCloud<PointT>& cloud, const CloudSamples&
                   "its median point (e.g. point %d at (%g, %g, %g)): left out, %s",
                   samples.far.size(), samples.far.size() == 1 ? "" : "s",
                   samples.far.size() == 1 ? "s" : "", kFarPointFactor,
-                  static_cast<int>(samples.far.front()), example.x, example.y, example.z,
-                  where_far_points_go);
+                  static_cast<int>(samples.far.front()), example.x, example.y,
+                  example.z, where_far_points_go);
     text += buffer;
   }
   const double step = floatRoundingStep(samples.points);
   if (spacing > 0 && step > kCoarseRoundingShare * spacing) {
-    std::snprintf(buffer, sizeof buffer,
-                  "%scoordinates as large as these are rounded to steps of %g as floats, "
-                  "%.0f%% of the typical sample spacing %g: shift the cloud towards the "
-                  "origin before it is stored as float (e.g. subtract a corner of its "
-                  "bounding box), or read it from a double-precision source",
-                  text.empty() ? "" : "; ", step, 100 * step / spacing, spacing);
+    std::snprintf(
+        buffer, sizeof buffer,
+        "%scoordinates as large as these are rounded to steps of %g as floats, "
+        "%.0f%% of the typical sample spacing %g: shift the cloud towards the "
+        "origin before it is stored as float (e.g. subtract a corner of its "
+        "bounding box), or read it from a double-precision source",
+        text.empty() ? "" : "; ", step, 100 * step / spacing, spacing);
     text += buffer;
   }
   return text;

@@ -39,8 +39,8 @@ struct DecimationLevels
   /** One entry per sample, indexed by SampleIndex (size VoronoiCocone::size());
    * dimensionless like rho. */
   std::vector<double> level;
-  double largest_ratio_bound = 0; ///< the rho the run went up to (dimensionless)
-  std::size_t removals = 0;       ///< samples removed (duplicates not counted)
+  double largest_ratio_bound = 0;   ///< the rho the run went up to (dimensionless)
+  std::size_t removals = 0;         ///< samples removed (duplicates not counted)
   std::size_t relaxation_moves = 0; ///< kept samples the relaxation replaced
 };
 
@@ -73,13 +73,12 @@ struct DecimationLevels
  *         Status::invalid_parameter for a value outside its range (isValid) or
  *         \a boundary of the wrong size; Status::internal_error when cancelled or out
  *         of memory */
-PCL_COCONE_EXPORT Status
-decimate(VoronoiCocone&& voronoi,
-         const DecimationParameters& parameters,
-         const std::vector<std::uint8_t>& boundary,
-         DecimationLevels& levels,
-         const ProgressCallback& progress = nullptr,
-         std::string* message = nullptr);
+PCL_COCONE_EXPORT Status decimate(VoronoiCocone&& voronoi,
+                                  const DecimationParameters& parameters,
+                                  const std::vector<std::uint8_t>& boundary,
+                                  DecimationLevels& levels,
+                                  const ProgressCallback& progress = nullptr,
+                                  std::string* message = nullptr);
 
 /** \brief Beyond the paper: evens out a decimated sample, keeping its size.
  *
@@ -106,14 +105,12 @@ decimate(VoronoiCocone&& voronoi,
  * \return Status::ok; Status::invalid_parameter when a size does not match (then
  *         nothing changes and \a moves is 0); Status::internal_error when memory ran
  *         out (then \a kept is as given) */
-PCL_COCONE_EXPORT Status
-relaxDecimatedSample(const VoronoiCocone& voronoi,
-                     const std::vector<std::uint8_t>& fixed,
-                     unsigned iterations,
-                     unsigned threads,
-                     std::vector<std::uint8_t>& kept,
-                     std::size_t& moves,
-                     std::string* message = nullptr);
+PCL_COCONE_EXPORT Status relaxDecimatedSample(const VoronoiCocone& voronoi,
+                                              const std::vector<std::uint8_t>& fixed,
+                                              unsigned iterations, unsigned threads,
+                                              std::vector<std::uint8_t>& kept,
+                                              std::size_t& moves,
+                                              std::string* message = nullptr);
 
 } // namespace cocone
 } // namespace pcl

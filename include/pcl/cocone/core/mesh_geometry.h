@@ -27,8 +27,7 @@ namespace cocone {
  *         collinear corners)
  * \throws std::out_of_range for an index outside \a points */
 PCL_COCONE_EXPORT bool
-trianglesIntersect(const std::vector<Eigen::Vector3d>& points,
-                   const TriangleIndices& a,
+trianglesIntersect(const std::vector<Eigen::Vector3d>& points, const TriangleIndices& a,
                    const TriangleIndices& b);
 
 /** \brief Whether segment \a a \a b meets triangle \a t other than at a vertex they
@@ -42,10 +41,8 @@ trianglesIntersect(const std::vector<Eigen::Vector3d>& points,
  *         when \a t has no area
  * \throws std::out_of_range for an index outside \a points */
 PCL_COCONE_EXPORT bool
-segmentCrossesTriangle(const std::vector<Eigen::Vector3d>& points,
-                       std::uint32_t a,
-                       std::uint32_t b,
-                       const TriangleIndices& t);
+segmentCrossesTriangle(const std::vector<Eigen::Vector3d>& points, std::uint32_t a,
+                       std::uint32_t b, const TriangleIndices& t);
 
 /** \brief Counts the pairs of triangles of a mesh that intersect (see
  * trianglesIntersect). Triangles without area (a repeated index or collinear corners)

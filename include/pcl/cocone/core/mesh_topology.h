@@ -27,14 +27,16 @@ using TriangleIndices = std::array<std::uint32_t, 3>;
  * vertices referenced by no triangle do not count anywhere. */
 struct MeshTopology
 {
-  std::size_t vertices = 0;  ///< distinct vertices referenced by the triangles
-  std::size_t edges = 0;     ///< distinct undirected edges of non-degenerate triangles
-  std::size_t triangles = 0; ///< triangles given (degenerate and repeated ones included)
+  std::size_t vertices = 0; ///< distinct vertices referenced by the triangles
+  std::size_t edges = 0;    ///< distinct undirected edges of non-degenerate triangles
+  std::size_t triangles =
+      0; ///< triangles given (degenerate and repeated ones included)
 
   std::size_t degenerate_triangles = 0; ///< triangles repeating a vertex
-  std::size_t duplicate_triangles = 0;  ///< triangles with the vertex set of an earlier one
-  std::size_t boundary_edges = 0;       ///< edges with exactly one triangle
-  std::size_t non_manifold_edges = 0;   ///< edges with more than two triangles
+  std::size_t duplicate_triangles =
+      0;                          ///< triangles with the vertex set of an earlier one
+  std::size_t boundary_edges = 0; ///< edges with exactly one triangle
+  std::size_t non_manifold_edges = 0; ///< edges with more than two triangles
   /** Vertices whose incident triangles do not form a single fan (triangles around the
    * vertex connected through edges incident to it): the mesh is pinched there. */
   std::size_t non_manifold_vertices = 0;
@@ -95,9 +97,8 @@ struct MeshTopology
   {
     if (!isManifold() || !isConsistentlyOriented())
       return -1;
-    const long twice =
-        2 * static_cast<long>(components) - eulerCharacteristic() -
-        static_cast<long>(boundary_loops.size());
+    const long twice = 2 * static_cast<long>(components) - eulerCharacteristic() -
+                       static_cast<long>(boundary_loops.size());
     return twice >= 0 && twice % 2 == 0 ? twice / 2 : -1;
   }
 };

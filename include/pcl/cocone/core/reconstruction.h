@@ -67,13 +67,12 @@ struct ReconstructionReport : ReconstructionStatistics
  *         Status::invalid_parameter when a value of \a parameters is outside its
  *         range (isValid); Status::internal_error when memory ran out or a stage
  *         failed (then \a triangles and \a report are empty) */
-PCL_COCONE_EXPORT Status
-reconstructSurface(const VoronoiCocone& voronoi,
-                   const ReconstructionParameters& parameters,
-                   std::vector<TriangleIndices>& triangles,
-                   ReconstructionReport& report,
-                   const ProgressCallback& progress = nullptr,
-                   std::string* message = nullptr);
+PCL_COCONE_EXPORT Status reconstructSurface(const VoronoiCocone& voronoi,
+                                            const ReconstructionParameters& parameters,
+                                            std::vector<TriangleIndices>& triangles,
+                                            ReconstructionReport& report,
+                                            const ProgressCallback& progress = nullptr,
+                                            std::string* message = nullptr);
 
 } // namespace cocone
 } // namespace pcl

@@ -46,8 +46,7 @@ struct CloudScale
 /** \brief The cloud's own scale (see CloudScale).
  * \param[in] points the points, each finite
  * \return the median point and radius; zero for an empty array */
-PCL_COCONE_EXPORT CloudScale
-cloudScale(const std::vector<Eigen::Vector3d>& points);
+PCL_COCONE_EXPORT CloudScale cloudScale(const std::vector<Eigen::Vector3d>& points);
 
 /** \brief Which points lie far beyond the cloud's own scale: farther than
  * kFarPointFactor times cloudScale().radius from cloudScale().centre.
@@ -63,8 +62,7 @@ findFarPoints(const std::vector<Eigen::Vector3d>& points);
  * \param[in] points the points, each finite
  * \return the distance between the float nearest to the largest absolute coordinate
  *         and the next float away from zero, in input units; 0 for an empty array */
-PCL_COCONE_EXPORT double
-floatRoundingStep(const std::vector<Eigen::Vector3d>& points);
+PCL_COCONE_EXPORT double floatRoundingStep(const std::vector<Eigen::Vector3d>& points);
 
 } // namespace cocone
 } // namespace pcl

@@ -28,16 +28,15 @@ enum class Status
   non_finite_input,     ///< a coordinate is NaN or infinite
   degenerate_dimension, ///< all points are coplanar or collinear: there is no 3D cell
   too_many_points,      ///< 2^32 - 1 points or more: more than a SampleIndex addresses
-  invalid_parameter,    ///< a parameter or an input's size is outside its documented range
-  internal_error        ///< CGAL failed, memory ran out, or the run was cancelled
+  invalid_parameter, ///< a parameter or an input's size is outside its documented range
+  internal_error     ///< CGAL failed, memory ran out, or the run was cancelled
 };
 
 /** \brief Human-readable name of a status.
  * \param[in] status the status to name
  * \return the enumerator's name, e.g. "degenerate_dimension"; "unknown" for a value
  *         outside the enumeration */
-PCL_COCONE_EXPORT const char*
-toString(Status status);
+PCL_COCONE_EXPORT const char* toString(Status status);
 
 /** \brief Progress of a long computation: called with the share done, in [0, 1];
  * returning false cancels it (the computation then returns Status::internal_error with

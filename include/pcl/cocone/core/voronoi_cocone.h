@@ -4,11 +4,12 @@
  * Second-level API: the Voronoi/cocone core shared by BoundarySampleEstimation,
  * CoconeReconstruction and VoronoiDecimation, and by every other front end. Most users
  * want the three classes (pcl/cocone/boundary_sample_estimation.h,
- * cocone_reconstruction.h, voronoi_decimation.h); the headers under pcl/cocone/core/ are for
- * those who work on samples without a PCL cloud, or build on the diagram itself. Every
- * index here is a sample index (a position in the array given to compute()), never a
- * cloud index. The core is compiled once into the library; CGAL stays behind its
- * private implementation, so these headers need only Eigen and the standard library.
+ * cocone_reconstruction.h, voronoi_decimation.h); the headers under pcl/cocone/core/
+ * are for those who work on samples without a PCL cloud, or build on the diagram
+ * itself. Every index here is a sample index (a position in the array given to
+ * compute()), never a cloud index. The core is compiled once into the library; CGAL
+ * stays behind its private implementation, so these headers need only Eigen and the
+ * standard library.
  *
  * Stages, one header each: the diagram (this header), BOUNDARY (boundary_samples.h),
  * the reconstruction (reconstruction.h), DECIMATE (decimation.h); mesh checks
@@ -107,15 +108,15 @@ struct IndexRange
   }
 };
 
-/** \brief Voronoi cell geometry of a point sample: one 3D Delaunay triangulation, and per
- * sample its poles, pole vector, height, cocone radius and the Delaunay triangles its
- * cocone marks.
+/** \brief Voronoi cell geometry of a point sample: one 3D Delaunay triangulation, and
+ * per sample its poles, pole vector, height, cocone radius and the Delaunay triangles
+ * its cocone marks.
  *
  * Definitions (Dey et al. 2001, section 2; Amenta, Choi, Dey, Leekha 2000):
  * - positive pole p+: the Voronoi vertex of the cell V_p farthest from p; at infinity
  *   when V_p is unbounded (p on the convex hull);
- * - pole vector v_p: unit vector along p+ - p; for an unbounded cell, the average of the
- *   outward normals of the convex-hull triangles at p;
+ * - pole vector v_p: unit vector along p+ - p; for an unbounded cell, the average of
+ * the outward normals of the convex-hull triangles at p;
  * - negative pole p-: the Voronoi vertex of V_p farthest from p with (p- - p).v_p < 0;
  * - height h_p = |p- - p|: an estimate of the local feature size;
  * - cocone C_p: the points y of V_p with |cos angle(y - p, v_p)| <= sin(theta);
@@ -156,13 +157,11 @@ public:
   /** \brief Takes over the triangulation and results of the moved-from object, which
    * may afterwards only be assigned to or destroyed.
    * \return *this */
-  VoronoiCocone&
-  operator=(VoronoiCocone&&) noexcept;
+  VoronoiCocone& operator=(VoronoiCocone&&) noexcept;
   /** \brief Not copyable (the object owns a triangulation); move it instead. */
   VoronoiCocone(const VoronoiCocone&) = delete;
   /** \brief Not copyable (the object owns a triangulation); move it instead. */
-  VoronoiCocone&
-  operator=(const VoronoiCocone&) = delete;
+  VoronoiCocone& operator=(const VoronoiCocone&) = delete;
 
   /** \brief Set theta, the cocone angle: the cocone of p is the part of its Voronoi
    * cell within theta of the plane orthogonal to the pole vector. Radians; default
@@ -171,23 +170,19 @@ public:
    * \param[in] theta the cocone angle in radians
    * \return Status::ok, or Status::invalid_parameter (and the angle is unchanged) when
    *         \a theta is outside (0, pi/2); no message is printed */
-  Status
-  setCoconeAngle(double theta);
+  Status setCoconeAngle(double theta);
   /** \brief Get theta, the cocone angle (see setCoconeAngle).
    * \return the cocone angle in radians, in (0, pi/2) */
-  double
-  getCoconeAngle() const;
+  double getCoconeAngle() const;
 
   /** \brief Set the number of worker threads of compute(), and of decimate() on this
    * object.
    * \param[in] threads number of threads; 0 (default) lets TBB use every core; any
    *            value is accepted */
-  void
-  setNumberOfThreads(unsigned threads);
+  void setNumberOfThreads(unsigned threads);
   /** \brief Get the number of worker threads (see setNumberOfThreads).
    * \return the number of threads; 0 means automatic (every core) */
-  unsigned
-  getNumberOfThreads() const;
+  unsigned getNumberOfThreads() const;
 
   /** \brief Builds the Delaunay triangulation of \a points and the per-sample geometry.
    * Replaces the results of any earlier compute() (also when it fails).
@@ -200,9 +195,8 @@ public:
    *         Status::invalid_parameter (the cocone angle), Status::too_many_points,
    *         Status::non_finite_input, Status::too_few_points,
    *         Status::degenerate_dimension or Status::internal_error */
-  Status
-  compute(const std::vector<Eigen::Vector3d>& points,
-          const ProgressCallback& progress = nullptr);
+  Status compute(const std::vector<Eigen::Vector3d>& points,
+                 const ProgressCallback& progress = nullptr);
 
   /** \brief Wall-clock seconds of the stages of the last compute(). */
   struct Timings
@@ -213,138 +207,118 @@ public:
   /** \brief Durations of the last compute().
    * \return the stages' wall-clock times in seconds; all 0 before compute() or after a
    *         failed one */
-  const Timings&
-  timings() const;
+  const Timings& timings() const;
 
   /** \brief Whether the diagram can be used.
    * \return Status::ok after a successful compute(); Status::not_computed before any,
    *         and after decimate() consumed the object (whether it succeeded, failed or
    *         was cancelled); otherwise the reason the last compute() failed */
-  Status
-  status() const;
+  Status status() const;
 
   /** \brief Explanation of the last failure of compute().
    * \return one line, e.g. "all points are coplanar: no 3D Voronoi cell to measure";
    *         empty after success */
-  const std::string&
-  errorMessage() const;
+  const std::string& errorMessage() const;
 
   /** \brief Number of samples given to compute(), duplicates included.
    * \return the size of the array given to the last successful compute(): the valid
    *         sample indices are 0 to size() - 1; 0 before compute() or after a
    *         failure */
-  std::size_t
-  size() const;
+  std::size_t size() const;
 
   /** \brief Number of distinct samples (Delaunay vertices).
    * \return the number of distinct points, at most size(); 0 before compute() or after
    *         a failure */
-  std::size_t
-  numUniqueSamples() const;
+  std::size_t numUniqueSamples() const;
 
   /** \brief The representative of a sample: the smallest index whose point is
    * identical to sample \a i.
    * \param[in] i a sample index, < size()
    * \return a sample index: \a i itself unless \a i duplicates an earlier point */
-  SampleIndex
-  representative(SampleIndex i) const;
+  SampleIndex representative(SampleIndex i) const;
 
   /** \brief The typical sample spacing: the median distance from a sample to its
    * nearest other sample (through the Delaunay edges), over up to 1024 distinct samples
    * spread evenly over the index range. Deterministic.
    * \return the spacing in input units; 0 before compute() */
-  double
-  typicalSpacing() const;
+  double typicalSpacing() const;
 
   /** \brief The samples translated to their centroid (the frame CGAL works in).
    * \return one point per sample (indexed by SampleIndex, duplicates included), in
    *         input units: sample i = centeredPoints()[i] + offset() */
-  const std::vector<Eigen::Vector3d>&
-  centeredPoints() const;
+  const std::vector<Eigen::Vector3d>& centeredPoints() const;
 
   /** \brief The translation applied: sample = centered point + offset().
    * \return the centroid of the samples (duplicates included), in input units; zero
    *         before compute() */
-  const Eigen::Vector3d&
-  offset() const;
+  const Eigen::Vector3d& offset() const;
 
   /** \brief Pole vector v_p of a sample.
    * \param[in] i a sample index, < size() (a duplicate reads its representative's)
    * \return the unit pole vector, oriented towards the positive pole (for an unbounded
    *         cell: the normalized sum of the outward normals of the convex-hull
    *         triangles at p) */
-  const Eigen::Vector3d&
-  poleVector(SampleIndex i) const;
+  const Eigen::Vector3d& poleVector(SampleIndex i) const;
 
   /** \brief Whether the positive pole of a sample lies at infinity.
    * \param[in] i a sample index, < size() (a duplicate reads its representative's)
    * \return true when V_p is unbounded (p lies on the convex hull), so p+ is at
    *         infinity */
-  bool
-  positivePoleAtInfinity(SampleIndex i) const;
+  bool positivePoleAtInfinity(SampleIndex i) const;
 
   /** \brief Positive pole p+ of a sample.
    * \param[in] i a sample index, < size() (a duplicate reads its representative's)
    * \return the pole in input coordinates; all components +infinity when it lies at
    *         infinity */
-  Eigen::Vector3d
-  positivePole(SampleIndex i) const;
+  Eigen::Vector3d positivePole(SampleIndex i) const;
 
   /** \brief Negative pole p- of a sample.
    * \param[in] i a sample index, < size() (a duplicate reads its representative's)
    * \return the pole in input coordinates; all components NaN when V_p has no Voronoi
    *         vertex on the negative side of v_p */
-  Eigen::Vector3d
-  negativePole(SampleIndex i) const;
+  Eigen::Vector3d negativePole(SampleIndex i) const;
 
   /** \brief Height h_p = |p- - p| of a sample, an estimate of the local feature size.
    * \param[in] i a sample index, < size() (a duplicate reads its representative's)
    * \return the height in input units, > 0; NaN when there is no negative pole */
-  double
-  height(SampleIndex i) const;
+  double height(SampleIndex i) const;
 
   /** \brief Cocone radius r_p of a sample, as computed by compute().
    * \param[in] i a sample index, < size() (a duplicate reads its representative's)
    * \return the radius in input units, >= 0; +infinity for an unbounded cocone */
-  double
-  coconeRadius(SampleIndex i) const;
+  double coconeRadius(SampleIndex i) const;
 
   /** \brief Ratio r_p / h_p of a sample (see coconeRadius and height).
    * \param[in] i a sample index, < size() (a duplicate reads its representative's)
    * \return the ratio, dimensionless, >= 0; +infinity when h_p is undefined or r_p
    *         infinite */
-  double
-  ratio(SampleIndex i) const;
+  double ratio(SampleIndex i) const;
 
   /** \brief The Delaunay triangles marked by the cocone of at least one vertex.
    * \return the marked triangles (vertices are representative sample indices); empty
    *         before compute() */
-  const std::vector<MarkedTriangle>&
-  markedTriangles() const;
+  const std::vector<MarkedTriangle>& markedTriangles() const;
 
   /** \brief The marked triangles incident to a sample (marked by it or by another
    * vertex). Duplicates read their representative's.
    * \param[in] i a sample index, < size()
    * \return indices into markedTriangles() (not sample indices); empty before
    *         compute() */
-  IndexRange
-  trianglesAround(SampleIndex i) const;
+  IndexRange trianglesAround(SampleIndex i) const;
 
   /** \brief Cocone neighbours N_p of sample i: the samples whose Voronoi cell meets
    * C_p, i.e. the other vertices of the triangles that i marks.
    * \param[in] i a sample index, < size() (a duplicate reads its representative's)
    * \param[out] neighbours representative sample indices, sorted, without repeats
    *             (cleared first) */
-  void
-  coconeNeighbours(SampleIndex i, std::vector<SampleIndex>& neighbours) const;
+  void coconeNeighbours(SampleIndex i, std::vector<SampleIndex>& neighbours) const;
 
   /** \brief The samples sharing a finite Delaunay edge with sample i. Safe to call
    * from several threads at once.
    * \param[in] i a sample index, < size() (a duplicate reads its representative's)
    * \param[out] neighbours representative sample indices, sorted (cleared first); empty
    *             before compute() */
-  void
-  delaunayNeighbours(SampleIndex i, std::vector<SampleIndex>& neighbours) const;
+  void delaunayNeighbours(SampleIndex i, std::vector<SampleIndex>& neighbours) const;
 
   /** \brief Every finite Delaunay triangle whose three vertices all lie in \a samples.
    * \param[in] samples sample indices, each < size(), in any order; duplicates stand
@@ -352,9 +326,8 @@ public:
    * \param[out] triangles the triangles as representative sample indices, ascending
    *             within each triangle, each triangle reported once, sorted (cleared
    *             first); empty before compute() */
-  void
-  delaunayTrianglesAmong(const std::vector<SampleIndex>& samples,
-                         std::vector<std::array<SampleIndex, 3>>& triangles) const;
+  void delaunayTrianglesAmong(const std::vector<SampleIndex>& samples,
+                              std::vector<std::array<SampleIndex, 3>>& triangles) const;
 
 private:
   // The state lives behind the pointer, with CGAL's types in the library only. The

@@ -28,7 +28,8 @@ void
 CoconeReconstruction<PointInT>::setRatioBound(double rho)
 {
   if (cocone::acceptParameter(getClassName(), "setRatioBound", "rho", rho,
-                              cocone::kRatioBoundRange, parameters_.boundary.ratio_bound))
+                              cocone::kRatioBoundRange,
+                              parameters_.boundary.ratio_bound))
     parameters_.boundary.ratio_bound = rho;
 }
 
@@ -74,7 +75,8 @@ CoconeReconstruction<PointInT>::fail(const std::string& message)
 
 template <typename PointInT>
 void
-CoconeReconstruction<PointInT>::performReconstruction(std::vector<pcl::Vertices>& polygons)
+CoconeReconstruction<PointInT>::performReconstruction(
+    std::vector<pcl::Vertices>& polygons)
 {
   // The core reports its own failures; what remains is this template's copies.
   try {
@@ -96,7 +98,8 @@ CoconeReconstruction<PointInT>::performReconstruction(std::vector<pcl::Vertices>
 
 template <typename PointInT>
 void
-CoconeReconstruction<PointInT>::reconstructSelection(std::vector<pcl::Vertices>& polygons)
+CoconeReconstruction<PointInT>::reconstructSelection(
+    std::vector<pcl::Vertices>& polygons)
 {
   polygons.clear();
   error_message_.clear();
@@ -156,8 +159,8 @@ CoconeReconstruction<PointInT>::reconstructSelection(std::vector<pcl::Vertices>&
   PCL_DEBUG("[pcl::%s::reconstruct] %zu triangles, %zu candidates, %zu pruned, %zu "
             "stitched in %zu holes, %zu open loops, %zu unused points.\n",
             getClassName().c_str(), polygons.size(), report_.candidate_triangles,
-            report_.pruned_triangles, report_.stitched_triangles, report_.stitched_holes,
-            boundary_loops_.size(), unused_indices_.size());
+            report_.pruned_triangles, report_.stitched_triangles,
+            report_.stitched_holes, boundary_loops_.size(), unused_indices_.size());
 }
 
 } // namespace pcl

@@ -57,14 +57,16 @@ VoronoiDecimation<PointT>::decimate(const cocone::DecimationParameters& paramete
     std::vector<double>().swap(removal_levels_);
     pcl::Indices().swap(far_indices_);
     error_message_ = "out of memory during decimation";
-    PCL_ERROR("[pcl::%s::filter] %s.\n", getClassName().c_str(), error_message_.c_str());
+    PCL_ERROR("[pcl::%s::filter] %s.\n", getClassName().c_str(),
+              error_message_.c_str());
     return false;
   }
 }
 
 template <typename PointT>
 bool
-VoronoiDecimation<PointT>::decimateSelection(const cocone::DecimationParameters& parameters)
+VoronoiDecimation<PointT>::decimateSelection(
+    const cocone::DecimationParameters& parameters)
 {
   removal_levels_.assign(input_->size(), std::numeric_limits<double>::quiet_NaN());
   error_message_.clear();
@@ -75,7 +77,8 @@ VoronoiDecimation<PointT>::decimateSelection(const cocone::DecimationParameters&
 
   const auto fail = [&](const std::string& message) {
     error_message_ = message;
-    PCL_ERROR("[pcl::%s::filter] %s.\n", getClassName().c_str(), error_message_.c_str());
+    PCL_ERROR("[pcl::%s::filter] %s.\n", getClassName().c_str(),
+              error_message_.c_str());
     return false;
   };
   cocone::VoronoiCocone voronoi(voronoi_parameters_);
@@ -85,7 +88,8 @@ VoronoiDecimation<PointT>::decimateSelection(const cocone::DecimationParameters&
   warning_message_ = cocone::describeSampleProblems(
       *input_, samples, voronoi.typicalSpacing(), "never kept");
   if (!warning_message_.empty())
-    PCL_WARN("[pcl::%s::filter] %s.\n", getClassName().c_str(), warning_message_.c_str());
+    PCL_WARN("[pcl::%s::filter] %s.\n", getClassName().c_str(),
+             warning_message_.c_str());
   if (status != cocone::Status::ok)
     return fail(voronoi.errorMessage());
   // BOUNDARY runs here, once, on the full sample: rims are thinned from its flags, and
@@ -132,8 +136,8 @@ VoronoiDecimation<PointT>::applyFilter(Indices& indices)
 
 template <typename PointT>
 bool
-VoronoiDecimation<PointT>::computeLevelsOfDetail(const std::vector<double>& ratio_bounds,
-                                                 std::vector<pcl::Indices>& kept)
+VoronoiDecimation<PointT>::computeLevelsOfDetail(
+    const std::vector<double>& ratio_bounds, std::vector<pcl::Indices>& kept)
 {
   kept.clear();
   if (ratio_bounds.empty())

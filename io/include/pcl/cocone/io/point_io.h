@@ -27,8 +27,9 @@ namespace cocone {
  * - `.obj`: the `v x y z` lines (extra coordinates such as w or vertex colours are
  *   ignored); faces are skipped;
  * - `.off`: OFF, COFF, NOFF headers; the vertices;
- * - `.xyz`, `.pts`, `.txt`: one point per line, whitespace-separated columns whose first
- *   three are x y z (further columns are ignored); blank lines and lines starting with
+ * - `.xyz`, `.pts`, `.txt`: one point per line, whitespace-separated columns whose
+ * first three are x y z (further columns are ignored); blank lines and lines starting
+ * with
  *   `#` are skipped. Hoppe's a3d streams (his `.pts` files) are read as written: the
  *   points are the `p x y z` records; the normal, colour and command records (`n`,
  *   `d`, `s`, `g`, `o`, `O`, `f`, each with three numbers) are checked and set aside,
@@ -55,7 +56,8 @@ namespace cocone {
  * \return true on success; false if the file is missing, unreadable, malformed, of an
  *         unknown extension, or has no point (the cloud is then empty) */
 PCL_COCONE_IO_EXPORT bool
-loadPointSamples(const std::string& path, pcl::PCLPointCloud2& cloud, std::string* error = nullptr);
+loadPointSamples(const std::string& path, pcl::PCLPointCloud2& cloud,
+                 std::string* error = nullptr);
 
 /** \brief Reads the faces of a mesh file (`.ply`, `.obj`, `.off`) as polygons of vertex
  * indices (0-based, into the vertices loadPointSamples reads from the same file).
@@ -69,8 +71,7 @@ loadPointSamples(const std::string& path, pcl::PCLPointCloud2& cloud, std::strin
  * \return true on success (a file without faces gives an empty list); false if the file
  *         cannot be read or is not a mesh format */
 PCL_COCONE_IO_EXPORT bool
-loadMeshFaces(const std::string& path,
-              std::vector<pcl::Vertices>& faces,
+loadMeshFaces(const std::string& path, std::vector<pcl::Vertices>& faces,
               std::string* error = nullptr);
 
 /** \brief \a text with every byte that is not part of a valid UTF-8 sequence written
@@ -79,8 +80,7 @@ loadMeshFaces(const std::string& path,
  * \param[in] text any bytes
  * \return the same text where it is valid UTF-8 (overlong forms, surrogates and code
  *         points beyond U+10FFFF are not), escapes elsewhere */
-PCL_COCONE_IO_EXPORT std::string
-utf8Escaped(std::string_view text);
+PCL_COCONE_IO_EXPORT std::string utf8Escaped(std::string_view text);
 
 } // namespace cocone
 } // namespace pcl

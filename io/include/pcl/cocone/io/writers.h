@@ -35,11 +35,8 @@ namespace cocone {
  *             reason on failure, and is cleared on success
  * \return true if every byte was written; false otherwise, and then \a path is as it
  *         was and no temporary file is left */
-PCL_COCONE_IO_EXPORT bool
-writeFile(const std::string& path,
-          const void* data,
-          std::size_t size,
-          std::string* error = nullptr);
+PCL_COCONE_IO_EXPORT bool writeFile(const std::string& path, const void* data,
+                                    std::size_t size, std::string* error = nullptr);
 
 /** \brief Writes \a cloud to \a path as binary PCD: the header of pcl::PCDWriter, then
  * the data as they are (every field, the cloud's own layout).
@@ -49,8 +46,7 @@ writeFile(const std::string& path,
  *             match width * height * point_step
  * \return true on success */
 PCL_COCONE_IO_EXPORT bool
-saveCloud(const std::string& path,
-          const pcl::PCLPointCloud2& cloud,
+saveCloud(const std::string& path, const pcl::PCLPointCloud2& cloud,
           std::string* error = nullptr);
 
 /** \brief Writes a triangle mesh to \a path in the format of its extension
@@ -64,11 +60,9 @@ saveCloud(const std::string& path,
  * \param[out] error as for writeFile; also set for an unknown extension
  * \return true on success */
 PCL_COCONE_IO_EXPORT bool
-saveMesh(const std::string& path,
-         const std::vector<std::array<float, 3>>& vertices,
+saveMesh(const std::string& path, const std::vector<std::array<float, 3>>& vertices,
          const std::vector<std::array<std::uint32_t, 3>>& triangles,
-         const std::string& creator,
-         std::string* error = nullptr);
+         const std::string& creator, std::string* error = nullptr);
 
 } // namespace cocone
 } // namespace pcl
