@@ -18,9 +18,11 @@
 #include <atomic>
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 
 namespace pcl {
 namespace cocone {
@@ -156,6 +158,15 @@ lowerCase(std::string text)
   return text;
 }
 
+/** The lower-case extension of \a path when saveMesh writes it, "" otherwise. */
+std::string
+meshExtension(const std::string& path)
+{
+  const std::string extension = lowerCase(fs::path(path).extension().string());
+  return extension == ".ply" || extension == ".vtk" || extension == ".obj" ? extension
+                                                                           : "";
+}
+
 /** Writes all \a size bytes to \a fd, going on after partial writes and interrupts;
  * false with errno set on an error (EFBIG past a file size limit when SIGXFSZ is
  * ignored, ENOSPC, EDQUOT, EIO). */
@@ -277,7 +288,7 @@ saveMesh(const std::string& path, const std::vector<std::array<float, 3>>& verti
          const std::vector<Triangle>& triangles, const std::string& creator,
          std::string* error)
 {
-  const std::string extension = lowerCase(fs::path(path).extension().string());
+  const std::string extension = meshExtension(path);
   std::string contents;
   if (extension == ".ply")
     contents = meshAsPly(vertices, triangles, creator);
@@ -289,6 +300,58 @@ saveMesh(const std::string& path, const std::vector<std::array<float, 3>>& verti
     return failed(error,
                   "unsupported mesh format '" + path + "' (expected .ply, .vtk, .obj)");
   return writeFile(path, contents.data(), contents.size(), error);
+}
+
+bool
+isMeshFormat(const std::string& path)
+{
+  return !meshExtension(path).empty();
+}
+
+bool
+meshForWriting(const pcl::PointCloud<pcl::PointXYZ>& points,
+               const std::vector<Triangle>& triangles, const pcl::Indices& far_points,
+               MeshForWriting& mesh, std::string* error)
+{
+  mesh = MeshForWriting();
+  const auto fail = [&](const std::string& message) {
+    mesh = MeshForWriting();
+    return failed(error, message);
+  };
+  std::vector<std::uint8_t> far(points.size(), 0);
+  for (const pcl::index_t i : far_points) {
+    if (i < 0 || static_cast<std::size_t>(i) >= points.size())
+      return fail("far point " + std::to_string(i) + " is not a point of the cloud (" +
+                  std::to_string(points.size()) + " points)");
+    far[static_cast<std::size_t>(i)] = 1;
+  }
+  constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> id(points.size(), none);
+  mesh.vertices.reserve(points.size() - std::min(points.size(), far_points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const pcl::PointXYZ& p = points[i];
+    if (far[i])
+      ++mesh.far_dropped;
+    else if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      ++mesh.non_finite_dropped;
+    else {
+      id[i] = static_cast<std::uint32_t>(mesh.vertices.size());
+      mesh.vertices.push_back({p.x, p.y, p.z});
+    }
+  }
+  mesh.triangles.resize(triangles.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = triangles[t][k];
+      if (v >= id.size() || id[v] == none)
+        return fail(
+            "triangle " + std::to_string(t) + " uses point " + std::to_string(v) +
+            (v >= id.size() ? ", beyond the cloud" : ", which is not finite or far"));
+      mesh.triangles[t][k] = id[v];
+    }
+  if (error)
+    error->clear();
+  return true;
 }
 
 } // namespace cocone
