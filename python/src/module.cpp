@@ -1183,7 +1183,8 @@ PYBIND11_MODULE(pcl_cocone, m)
   m.def("load_points", &loadPoints, "path"_a,
         "The points of a file, as the tools read them (loadPointSamples).\n\n"
         "Formats by extension, case-insensitive: .pcd, .ply, .obj, .off, .xyz,\n"
-        ".pts, .txt. Meshes give their vertices; NaN points are kept, in file\n"
+        ".pts, .txt, .las (LAS 1.0 to 1.4; LAZ is refused with the commands that\n"
+        "decompress it). Meshes give their vertices; NaN points are kept, in file\n"
         "order.\n"
         "\nParameters\n----------\n"
         "path : str or os.PathLike\n"
