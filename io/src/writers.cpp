@@ -32,20 +32,14 @@ namespace {
 namespace fs = std::filesystem;
 using Triangle = std::array<std::uint32_t, 3>;
 
-/** Appends the 4 bytes of \a bits least significant first, whatever the host order. */
-void
-appendLittleEndian(std::string& out, std::uint32_t bits)
+/** Stores the 4 bytes of \a bits at \a p least significant first, whatever the host
+ * order; returns the byte after them. */
+char*
+storeLittleEndian(char* p, std::uint32_t bits)
 {
   for (int shift = 0; shift < 32; shift += 8)
-    out += static_cast<char>((bits >> shift) & 0xffu);
-}
-
-void
-appendFloat(std::string& out, float value)
-{
-  std::uint32_t bits;
-  std::memcpy(&bits, &value, sizeof bits);
-  appendLittleEndian(out, bits);
+    *p++ = static_cast<char>((bits >> shift) & 0xffu);
+  return p;
 }
 
 /** Appends the shortest text that reads back as the same float. */
@@ -76,14 +70,23 @@ meshAsPly(const std::vector<std::array<float, 3>>& vertices,
                     "property float x\nproperty float y\nproperty float z\n" +
                     "element face " + std::to_string(triangles.size()) + "\n" +
                     "property list uchar int vertex_indices\nend_header\n";
-  out.reserve(out.size() + 12 * vertices.size() + 13 * triangles.size());
+  // The body is sized once and filled through a pointer: appended byte by byte, 10M
+  // vertices and 20M triangles took 0.9 to 1.3 s to encode, now 0.57 s
+  // (docs/performance.md). storeLittleEndian's four byte stores compile to one on a
+  // little-endian host.
+  const std::size_t header_size = out.size();
+  out.resize(header_size + 12 * vertices.size() + 13 * triangles.size());
+  char* p = &out[header_size];
   for (const auto& v : vertices)
-    for (const float c : v)
-      appendFloat(out, c);
+    for (const float c : v) {
+      std::uint32_t bits;
+      std::memcpy(&bits, &c, sizeof bits);
+      p = storeLittleEndian(p, bits);
+    }
   for (const Triangle& t : triangles) {
-    out += static_cast<char>(3);
+    *p++ = static_cast<char>(3);
     for (const std::uint32_t i : t)
-      appendLittleEndian(out, i);
+      p = storeLittleEndian(p, i);
   }
   return out;
 }
