@@ -90,7 +90,7 @@ printHelp()
       "",
       "Syntax is: %s INPUT OUTPUT.ply <options>",
       "       or: %s --demo OUT_DIR",
-      "  INPUT            the samples: .pcd .ply .obj .off .xyz .pts .txt (a mesh's",
+      "  INPUT            the samples: .pcd .ply .obj .off .xyz .pts .txt .las (a mesh's",
       "                   vertices are the samples; NaN points are dropped)",
       "  OUTPUT.ply       the mesh, binary PLY; its vertices are the points left",
       "                   after outlier removal and decimation",

@@ -70,6 +70,8 @@ LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
   expectEnd([&] { io::readOff(source, text, xyz, nullptr); });
 #elif defined(PCL_COCONE_FUZZ_columns)
   expectEnd([&] { io::readColumns(source, text, xyz); });
+#elif defined(PCL_COCONE_FUZZ_las)
+  expectEnd([&] { io::readLas(source, text, cloud); });
 #else
 #error "define PCL_COCONE_FUZZ_<format>"
 #endif

@@ -3,12 +3,15 @@
 // Writes the seed corpus of the fuzz targets: a few small, valid files per format that
 // between them use every feature the readers know (both PLY byte orders and ascii,
 // list properties before the vertices, the three PCD encodings, OBJ's face corner
-// forms, OFF's header variants, a3d records). Generated, so that nothing is fetched.
+// forms, OFF's header variants, a3d records, LAS versions and point formats).
+// Generated, so that nothing is fetched.
 //
 //   make_seeds OUT_DIR   writes OUT_DIR/<format>/<name>
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/cocone/io/writers.h>
 #include <pcl/io/pcd_io.h>
+
+#include "../test/support/las_file.h"
 
 #include <algorithm>
 #include <array>
@@ -169,5 +172,26 @@ main(int argc, char** argv)
       "SIZE 8 8 8 4\nTYPE F F F U\nCOUNT 1 1 1 1\nWIDTH 2\n"
       "HEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 2\nDATA ascii\n"
       "1.5 2.5 3.5 7\n4 5 6 8\n");
+
+  // LAS: every version's header, old and new point formats, a VLR, longer records, the
+  // 64-bit count of 1.4 (written by the tests' own writer).
+  namespace las = pcl::cocone::test;
+  const std::vector<las::LasPoint> points = {
+      {100, -200, 300, 7, 2}, {-5, 0, 12345, 65535, 31}, {0, 0, 0, 0, 0}};
+  const auto lasSeed = [&](const char* name, unsigned minor, unsigned format,
+                           std::size_t vlr_body, std::size_t extra_bytes) {
+    las::LasLayout layout;
+    layout.minor = minor;
+    layout.format = format;
+    layout.vlr_body = vlr_body;
+    layout.record_length = las::lasMinimumRecordLength(format) + extra_bytes;
+    layout.offset = {1000.5, -2000.25, 3};
+    put("las", name, las::lasFile(layout, points));
+  };
+  lasSeed("v12_format1.las", 2, 1, 0, 0);
+  lasSeed("v12_format0_vlr.las", 2, 0, 40, 3);
+  lasSeed("v13_format4.las", 3, 4, 0, 0);
+  lasSeed("v14_format6.las", 4, 6, 26, 0);
+  lasSeed("v14_format10.las", 4, 10, 0, 5);
   return 0;
 }

@@ -7,6 +7,7 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
+#include "support/las_file.h"
 #include "support/process.h"
 #include "support/shapes.h"
 
@@ -451,6 +452,51 @@ TEST_F(Tools, ReconstructionOfSphereIsClosedManifoldPly)
     EXPECT_EQ(valueAt<float>(vertices, i, *z), sphere_[i].z) << "vertex " << i;
   EXPECT_EQ(static_cast<long>(loadTriangles(output, kSpherePoints).size()),
             s.triangles);
+}
+
+TEST_F(Tools, ReconstructionReadsLas)
+{
+  // The sphere as airborne LiDAR stores it: LAS 1.4, point format 6, 64-bit count,
+  // integers of 0.1 mm around an offset.
+  pcl::cocone::test::LasLayout layout;
+  layout.minor = 4;
+  layout.format = 6;
+  layout.scale = {1e-4, 1e-4, 1e-4};
+  layout.offset = {500, -20, 3};
+  std::vector<pcl::cocone::test::LasPoint> points;
+  for (const pcl::PointXYZ& p : sphere_) {
+    pcl::cocone::test::LasPoint q;
+    q.x = static_cast<std::int32_t>(std::lround(p.x / layout.scale[0]));
+    q.y = static_cast<std::int32_t>(std::lround(p.y / layout.scale[1]));
+    q.z = static_cast<std::int32_t>(std::lround(p.z / layout.scale[2]));
+    points.push_back(q);
+  }
+  const fs::path input = path("sphere.las");
+  std::ofstream(input, std::ios::binary) << pcl::cocone::test::lasFile(layout, points);
+  const fs::path output = path("sphere_from_las.ply");
+  const ToolRun r = run(kReconstruction, {input.string(), output.string()});
+  expectSuccess(r);
+  const Summary s = meshSummary(r.out);
+  ASSERT_TRUE(s.found) << r.out;
+  EXPECT_TRUE(s.closed);
+  EXPECT_TRUE(s.manifold);
+  EXPECT_EQ(s.euler, 2);
+  EXPECT_EQ(s.vertices, static_cast<long>(kSpherePoints));
+  // Vertex i is LAS record i, scaled and offset.
+  const pcl::PCLPointCloud2 vertices = loadCloud(output);
+  ASSERT_EQ(rows(vertices), kSpherePoints);
+  const pcl::PCLPointField* x = findField(vertices, "x");
+  ASSERT_NE(x, nullptr);
+  for (std::size_t i = 0; i < kSpherePoints; i += 97)
+    EXPECT_EQ(valueAt<float>(vertices, i, *x),
+              static_cast<float>(points[i].x * layout.scale[0] + layout.offset[0]));
+
+  // LAZ is refused in one line that says how to convert it.
+  layout.format |= 0x80u;
+  const fs::path laz = path("sphere.laz");
+  std::ofstream(laz, std::ios::binary) << pcl::cocone::test::lasFile(layout, points);
+  expectOneLineFailure(run(kReconstruction, {laz.string(), output.string()}),
+                       "las2las");
 }
 
 TEST_F(Tools, ReconstructionWritesObjAndVtk)

@@ -13,13 +13,16 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace {
@@ -258,6 +261,62 @@ TEST_F(Writers, AFileWeMayNotWriteIsNotReplaced)
   EXPECT_FALSE(pcl::cocone::writeFile(file, "new", 3, &error));
   EXPECT_NE(error.find("Permission denied"), std::string::npos) << error;
   EXPECT_EQ(contentsOf(file), "locked");
+}
+
+TEST_F(Writers, MeshForWritingDropsNonFiniteAndFarPointsAndRenumbers)
+{
+  // Points 1 (NaN) and 4 (infinite) are not finite, 3 is far; 0, 2, 5 and 6 remain,
+  // as vertices 0 to 3.
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  pcl::PointCloud<pcl::PointXYZ> points;
+  for (const pcl::PointXYZ& p :
+       {pcl::PointXYZ(0, 0, 0), pcl::PointXYZ(nan, 0, 0), pcl::PointXYZ(1, 0, 0),
+        pcl::PointXYZ(1e30f, 1e30f, 1e30f), pcl::PointXYZ(0, INFINITY, 0),
+        pcl::PointXYZ(0, 1, 0), pcl::PointXYZ(0, 0, 1)})
+    points.push_back(p);
+  const Triangles triangles = {{0, 2, 5}, {0, 5, 6}, {2, 6, 5}};
+  pcl::cocone::MeshForWriting mesh;
+  std::string error = "stale";
+  ASSERT_TRUE(pcl::cocone::meshForWriting(points, triangles, {3}, mesh, &error))
+      << error;
+  EXPECT_TRUE(error.empty());
+  EXPECT_EQ(mesh.vertices, (Vertices{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}));
+  EXPECT_EQ(mesh.triangles, (Triangles{{0, 1, 2}, {0, 2, 3}, {1, 3, 2}}));
+  EXPECT_EQ(mesh.non_finite_dropped, 2u);
+  EXPECT_EQ(mesh.far_dropped, 1u);
+
+  // What the tool writes reads back as those vertices and triangles.
+  const std::string file = path("written.obj");
+  ASSERT_TRUE(pcl::cocone::saveMesh(file, mesh.vertices, mesh.triangles, "t", &error))
+      << error;
+  std::vector<pcl::Vertices> faces;
+  ASSERT_TRUE(pcl::cocone::loadMeshFaces(file, faces, &error)) << error;
+  ASSERT_EQ(faces.size(), 3u);
+  EXPECT_EQ(
+      std::vector<pcl::index_t>(faces[2].vertices.begin(), faces[2].vertices.end()),
+      (std::vector<pcl::index_t>{1, 3, 2}));
+
+  // A triangle on a dropped or missing point, or a far index beyond the cloud, is a
+  // caller's error, reported and leaving the mesh empty.
+  for (const auto& [bad_triangles, far, expected] :
+       std::vector<std::tuple<Triangles, pcl::Indices, std::string>>{
+           {{{0, 1, 2}}, {3}, "uses point 1, which is not finite or far"},
+           {{{0, 3, 2}}, {3}, "uses point 3, which is not finite or far"},
+           {{{0, 2, 7}}, {3}, "uses point 7, beyond the cloud"},
+           {{{0, 2, 5}}, {7}, "far point 7 is not a point of the cloud"},
+           {{{0, 2, 5}}, {-1}, "far point -1 is not a point of the cloud"}}) {
+    EXPECT_FALSE(pcl::cocone::meshForWriting(points, bad_triangles, far, mesh, &error));
+    EXPECT_NE(error.find(expected), std::string::npos) << error;
+    EXPECT_TRUE(mesh.vertices.empty() && mesh.triangles.empty());
+  }
+}
+
+TEST_F(Writers, MeshFormatsAreKnownByExtension)
+{
+  for (const char* name : {"a.ply", "b/c.OBJ", "d.Vtk"})
+    EXPECT_TRUE(pcl::cocone::isMeshFormat(name)) << name;
+  for (const char* name : {"a.stl", "ply", "a.ply.gz", "", "a.pcd"})
+    EXPECT_FALSE(pcl::cocone::isMeshFormat(name)) << name;
 }
 
 } // namespace

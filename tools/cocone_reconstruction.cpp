@@ -8,11 +8,10 @@
 
 #include <pcl/cocone/cocone_reconstruction.h>
 #include <pcl/cocone/core/mesh_topology.h>
-#include <pcl/common/point_tests.h>
+#include <pcl/cocone/io/writers.h>
 #include <pcl/console/print.h>
 
 #include <array>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -157,49 +156,25 @@ reconstruct(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLi
   return polygons;
 }
 
-/** The mesh as written: the finite points in input order (a NaN vertex cannot be
- * written to PLY/OBJ meaningfully, and a far point left out would make a viewer zoom
- * out to it), the triangles renumbered to match. */
-struct Mesh
+/** The polygons as triangles of input indices; a polygon that is no triangle would be
+ * a bug of the class. */
+std::vector<TriangleIndices>
+asTriangles(const std::vector<pcl::Vertices>& polygons)
 {
-  std::vector<std::array<float, 3>> vertices;
   std::vector<TriangleIndices> triangles;
-  std::size_t non_finite_dropped = 0;
-  std::size_t far_dropped = 0;
-};
-
-Mesh
-writtenMesh(const pcl::PointCloud<pcl::PointXYZ>& xyz,
-            const std::vector<pcl::Vertices>& polygons, const pcl::Indices& far_points)
-{
-  constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
-  Mesh mesh;
-  std::vector<std::uint8_t> far(xyz.size(), 0);
-  for (const pcl::index_t i : far_points)
-    far[static_cast<std::size_t>(i)] = 1;
-  std::vector<std::uint32_t> id(xyz.size(), none);
-  for (std::size_t i = 0; i < xyz.size(); ++i) {
-    if (!pcl::isXYZFinite(xyz[i]) || far[i]) {
-      ++(far[i] ? mesh.far_dropped : mesh.non_finite_dropped);
-      continue;
-    }
-    id[i] = static_cast<std::uint32_t>(mesh.vertices.size());
-    mesh.vertices.push_back({xyz[i].x, xyz[i].y, xyz[i].z});
-  }
-  mesh.triangles.reserve(polygons.size());
+  triangles.reserve(polygons.size());
   for (const pcl::Vertices& polygon : polygons) {
     if (polygon.vertices.size() != 3)
       fail("internal error: the reconstruction returned a polygon that is no triangle");
     TriangleIndices t;
     for (int k = 0; k < 3; ++k) {
-      const pcl::index_t v = polygon.vertices[k];
-      if (v < 0 || static_cast<std::size_t>(v) >= id.size() || id[v] == none)
-        fail("internal error: a triangle uses a point that is not finite or far");
-      t[k] = id[v];
+      if (polygon.vertices[k] < 0)
+        fail("internal error: a triangle uses a negative index");
+      t[k] = static_cast<std::uint32_t>(polygon.vertices[k]);
     }
-    mesh.triangles.push_back(t);
+    triangles.push_back(t);
   }
-  return mesh;
+  return triangles;
 }
 
 } // namespace
@@ -214,7 +189,13 @@ main(int argc, char** argv)
       toXyz(loadCloud(cmd.input(), cmd.verbose()));
   pcl::Indices far_points;
   const std::vector<pcl::Vertices> polygons = reconstruct(xyz, cmd, far_points);
-  const Mesh mesh = writtenMesh(*xyz, polygons, far_points);
+  // The finite points that are not far, in input order, the triangles renumbered: the
+  // io library's mesh as written, shared with the Python module's Mesh.save.
+  pcl::cocone::MeshForWriting mesh;
+  std::string error;
+  if (!pcl::cocone::meshForWriting(*xyz, asTriangles(polygons), far_points, mesh,
+                                   &error))
+    fail("internal error: " + error);
   if (mesh.non_finite_dropped > 0)
     pcl::console::print_info("note: %zu non-finite input points dropped; vertex ids "
                              "renumbered\n",

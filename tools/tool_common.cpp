@@ -413,8 +413,9 @@ CommandLine::printHelp() const
     print_info("%s", head.c_str());
     printWrapped(text, head.size(), help_column);
   };
-  item("INPUT", "the samples: .pcd .ply .obj .off .xyz .pts .txt (a mesh's vertices "
-                "are the samples; NaN points are skipped)");
+  item("INPUT",
+       "the samples: .pcd .ply .obj .off .xyz .pts .txt .las (a mesh's vertices "
+       "are the samples; NaN points are skipped)");
   item(tool_.output, tool_.output_help);
   print_info("\nwhere options are:\n");
   for (const Option& o : options_) {

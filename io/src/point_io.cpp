@@ -28,6 +28,7 @@ enum class Format
   obj,
   off,
   columns,
+  las,
   unknown
 };
 
@@ -49,6 +50,10 @@ formatOf(const std::string& path, std::string& extension)
     return Format::off;
   if (lower == ".xyz" || lower == ".pts" || lower == ".txt")
     return Format::columns;
+  // A .laz file goes to the LAS reader too: it refuses compressed data with the way to
+  // convert it, and reads a file that is LAS under that name.
+  if (lower == ".las" || lower == ".laz")
+    return Format::las;
   return Format::unknown;
 }
 
@@ -94,7 +99,7 @@ loadPointSamples(const std::string& path, pcl::PCLPointCloud2& cloud,
     const Format format = formatOf(path, extension);
     if (format == Format::unknown)
       source.fail("unknown extension " + excerpt(extension) +
-                  " (readable: .pcd .ply .obj .off .xyz .pts .txt)");
+                  " (readable: .pcd .ply .obj .off .xyz .pts .txt .las)");
     std::string text;
     readFile(source, path, text);
     std::vector<float> xyz;
@@ -104,6 +109,9 @@ loadPointSamples(const std::string& path, pcl::PCLPointCloud2& cloud,
       break;
     case Format::ply:
       readPlyVertices(source, text, cloud);
+      break;
+    case Format::las:
+      readLas(source, text, cloud);
       break;
     case Format::obj:
       readObj(source, text, xyz, nullptr);

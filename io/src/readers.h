@@ -39,6 +39,10 @@ void readPlyVertices(const Source& source, std::string_view text,
 void readPlyFaces(const Source& source, std::string_view text,
                   std::vector<pcl::Vertices>& faces);
 
+/** LAS 1.0 to 1.4, point formats 0 to 10: x, y, z, intensity and classification as
+ * fields of \a cloud. LAZ is refused. */
+void readLas(const Source& source, std::string_view text, pcl::PCLPointCloud2& cloud);
+
 /** PCD: \a text is checked here, then PCL's reader parses it. */
 void readPcd(const Source& source, std::string_view text, pcl::PCLPointCloud2& cloud);
 

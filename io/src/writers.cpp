@@ -18,9 +18,11 @@
 #include <atomic>
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 
 namespace pcl {
 namespace cocone {
@@ -30,20 +32,14 @@ namespace {
 namespace fs = std::filesystem;
 using Triangle = std::array<std::uint32_t, 3>;
 
-/** Appends the 4 bytes of \a bits least significant first, whatever the host order. */
-void
-appendLittleEndian(std::string& out, std::uint32_t bits)
+/** Stores the 4 bytes of \a bits at \a p least significant first, whatever the host
+ * order; returns the byte after them. */
+char*
+storeLittleEndian(char* p, std::uint32_t bits)
 {
   for (int shift = 0; shift < 32; shift += 8)
-    out += static_cast<char>((bits >> shift) & 0xffu);
-}
-
-void
-appendFloat(std::string& out, float value)
-{
-  std::uint32_t bits;
-  std::memcpy(&bits, &value, sizeof bits);
-  appendLittleEndian(out, bits);
+    *p++ = static_cast<char>((bits >> shift) & 0xffu);
+  return p;
 }
 
 /** Appends the shortest text that reads back as the same float. */
@@ -74,14 +70,23 @@ meshAsPly(const std::vector<std::array<float, 3>>& vertices,
                     "property float x\nproperty float y\nproperty float z\n" +
                     "element face " + std::to_string(triangles.size()) + "\n" +
                     "property list uchar int vertex_indices\nend_header\n";
-  out.reserve(out.size() + 12 * vertices.size() + 13 * triangles.size());
+  // The body is sized once and filled through a pointer: appended byte by byte, 10M
+  // vertices and 20M triangles took 0.9 to 1.3 s to encode, now 0.57 s
+  // (docs/performance.md). storeLittleEndian's four byte stores compile to one on a
+  // little-endian host.
+  const std::size_t header_size = out.size();
+  out.resize(header_size + 12 * vertices.size() + 13 * triangles.size());
+  char* p = &out[header_size];
   for (const auto& v : vertices)
-    for (const float c : v)
-      appendFloat(out, c);
+    for (const float c : v) {
+      std::uint32_t bits;
+      std::memcpy(&bits, &c, sizeof bits);
+      p = storeLittleEndian(p, bits);
+    }
   for (const Triangle& t : triangles) {
-    out += static_cast<char>(3);
+    *p++ = static_cast<char>(3);
     for (const std::uint32_t i : t)
-      appendLittleEndian(out, i);
+      p = storeLittleEndian(p, i);
   }
   return out;
 }
@@ -154,6 +159,15 @@ lowerCase(std::string text)
     return (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c;
   });
   return text;
+}
+
+/** The lower-case extension of \a path when saveMesh writes it, "" otherwise. */
+std::string
+meshExtension(const std::string& path)
+{
+  const std::string extension = lowerCase(fs::path(path).extension().string());
+  return extension == ".ply" || extension == ".vtk" || extension == ".obj" ? extension
+                                                                           : "";
 }
 
 /** Writes all \a size bytes to \a fd, going on after partial writes and interrupts;
@@ -277,7 +291,7 @@ saveMesh(const std::string& path, const std::vector<std::array<float, 3>>& verti
          const std::vector<Triangle>& triangles, const std::string& creator,
          std::string* error)
 {
-  const std::string extension = lowerCase(fs::path(path).extension().string());
+  const std::string extension = meshExtension(path);
   std::string contents;
   if (extension == ".ply")
     contents = meshAsPly(vertices, triangles, creator);
@@ -289,6 +303,58 @@ saveMesh(const std::string& path, const std::vector<std::array<float, 3>>& verti
     return failed(error,
                   "unsupported mesh format '" + path + "' (expected .ply, .vtk, .obj)");
   return writeFile(path, contents.data(), contents.size(), error);
+}
+
+bool
+isMeshFormat(const std::string& path)
+{
+  return !meshExtension(path).empty();
+}
+
+bool
+meshForWriting(const pcl::PointCloud<pcl::PointXYZ>& points,
+               const std::vector<Triangle>& triangles, const pcl::Indices& far_points,
+               MeshForWriting& mesh, std::string* error)
+{
+  mesh = MeshForWriting();
+  const auto fail = [&](const std::string& message) {
+    mesh = MeshForWriting();
+    return failed(error, message);
+  };
+  std::vector<std::uint8_t> far(points.size(), 0);
+  for (const pcl::index_t i : far_points) {
+    if (i < 0 || static_cast<std::size_t>(i) >= points.size())
+      return fail("far point " + std::to_string(i) + " is not a point of the cloud (" +
+                  std::to_string(points.size()) + " points)");
+    far[static_cast<std::size_t>(i)] = 1;
+  }
+  constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> id(points.size(), none);
+  mesh.vertices.reserve(points.size() - std::min(points.size(), far_points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const pcl::PointXYZ& p = points[i];
+    if (far[i])
+      ++mesh.far_dropped;
+    else if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      ++mesh.non_finite_dropped;
+    else {
+      id[i] = static_cast<std::uint32_t>(mesh.vertices.size());
+      mesh.vertices.push_back({p.x, p.y, p.z});
+    }
+  }
+  mesh.triangles.resize(triangles.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = triangles[t][k];
+      if (v >= id.size() || id[v] == none)
+        return fail(
+            "triangle " + std::to_string(t) + " uses point " + std::to_string(v) +
+            (v >= id.size() ? ", beyond the cloud" : ", which is not finite or far"));
+      mesh.triangles[t][k] = id[v];
+    }
+  if (error)
+    error->clear();
+  return true;
 }
 
 } // namespace cocone

@@ -11,6 +11,7 @@
 #include <pcl/cocone/cocone_reconstruction.h>
 #include <pcl/cocone/core/mesh_topology.h>
 #include <pcl/cocone/io/point_io.h>
+#include <pcl/cocone/io/writers.h>
 #include <pcl/cocone/parameters.h>
 #include <pcl/cocone/voronoi_decimation.h>
 #include <pcl/common/point_tests.h>
@@ -29,11 +30,14 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -212,6 +216,88 @@ threadCount(long long threads)
 }
 
 // ---------------------------------------------------------------------------------
+// Progress and Ctrl-C
+
+/** Raised (as pcl_cocone.CancelledError) when a progress callback returns False. */
+class Cancelled : public std::runtime_error
+{
+public:
+  using std::runtime_error::runtime_error;
+};
+
+/** The progress of one call, between the class and Python. The classes call their
+ * progress hook from the thread that called them, here the one that released the GIL.
+ * The hook takes the GIL back, lets Python run its signal handlers
+ * (PyErr_CheckSignals: Ctrl-C raises KeyboardInterrupt there, in the main thread),
+ * calls the user's callable with the share done, and lets the GIL go again. Whatever
+ * stops the run (an exception of a handler or of the callable, or False returned) makes
+ * the hook return false, which cancels the class's run; once the GIL is held again,
+ * raiseIfStopped raises that exception, or Cancelled. The hook is installed even
+ * without a callable, so that Ctrl-C always stops a running call (a few times per
+ * stage, at the latest after 65536 points of the triangulation). */
+class ProgressBridge
+{
+public:
+  /** \a callback: a callable taking the share done, or None. */
+  explicit ProgressBridge(py::object callback) : callback_(std::move(callback))
+  {
+    if (!callback_.is_none() && !PyCallable_Check(callback_.ptr()))
+      throw py::type_error("progress must be a callable taking the share done (a "
+                           "float from 0 to 1) or None, got " +
+                           py::repr(callback_).cast<std::string>());
+  }
+
+  /** The hook for the class's setProgressCallback; valid while this bridge lives. */
+  std::function<bool(double)>
+  hook()
+  {
+    return [this](double share) { return report(share); };
+  }
+
+  /** Raises what stopped the run, if anything did. Call with the GIL held. */
+  void
+  raiseIfStopped(const std::string& call) const
+  {
+    if (error_)
+      std::rethrow_exception(error_);
+    if (cancelled_)
+      throw Cancelled(call + " cancelled: the progress callback returned False");
+  }
+
+private:
+  bool
+  report(double share)
+  {
+    py::gil_scoped_acquire gil;
+    try {
+      if (PyErr_CheckSignals() != 0)
+        throw py::error_already_set();
+      if (callback_.is_none())
+        return true;
+      const py::object result = callback_(share);
+      // None (a function without return) and True go on; False cancels.
+      if (result.is_none())
+        return true;
+      const int truth = PyObject_IsTrue(result.ptr());
+      if (truth < 0)
+        throw py::error_already_set();
+      cancelled_ = truth == 0;
+      return !cancelled_;
+    }
+    catch (...) {
+      // Kept, with the GIL held, to be raised after the run (error_already_set holds
+      // the Python exception with its traceback).
+      error_ = std::current_exception();
+      return false;
+    }
+  }
+
+  py::object callback_;
+  std::exception_ptr error_;
+  bool cancelled_ = false;
+};
+
+// ---------------------------------------------------------------------------------
 // Output
 
 /** A numpy array over \a values, which it takes over (no copy). */
@@ -277,6 +363,10 @@ public:
   double reconstruct_seconds = 0; ///< CoconeReconstruction::reconstruct as a whole
   /** The triangles' own storage (the numpy array views it), for the topology. */
   std::shared_ptr<const std::vector<TriangleIndices>> triangle_storage;
+  /** The cloud the class reconstructed from (the one conversion of the input) and the
+   * points it left out as far: what save() writes, as the tool does. */
+  Cloud::ConstPtr cloud;
+  pcl::Indices far_points;
 
   /** The statistics as a dict, built on first use: its topology part walks every
    * triangle, which reconstruct() need not pay for. */
@@ -353,6 +443,37 @@ public:
             utility.attr("Vector3iVector")(numpy.attr("array")(triangles)));
   }
 
+  /** Writes the mesh with the tool's writer: the io library's meshForWriting (the
+   * finite points that are not far, the triangles renumbered) and saveMesh (binary PLY,
+   * legacy VTK or OBJ by the extension, written atomically). */
+  void
+  save(const py::object& path_like) const
+  {
+    const std::string path =
+        py::module_::import("os").attr("fspath")(path_like).cast<std::string>();
+    std::string error;
+    bool built = false;
+    bool saved = false;
+    {
+      py::gil_scoped_release release;
+      pcl::cocone::MeshForWriting mesh;
+      built = pcl::cocone::meshForWriting(*cloud, *triangle_storage, far_points, mesh,
+                                          &error);
+      saved = built && pcl::cocone::saveMesh(path, mesh.vertices, mesh.triangles,
+                                             "pcl_cocone.Mesh.save", &error);
+    }
+    if (!built)
+      throw std::runtime_error("internal error: " + error);
+    if (!saved) {
+      // The writer's one-line reason either way: the format is the caller's choice, a
+      // failed write the system's ("cannot write PATH: No such file or directory").
+      if (!pcl::cocone::isMeshFormat(path))
+        throw py::value_error(error);
+      PyErr_SetString(PyExc_OSError, error.c_str());
+      throw py::error_already_set();
+    }
+  }
+
 private:
   std::optional<py::dict> report_;
 };
@@ -397,7 +518,7 @@ sparseNote(const pcl::CoconeReconstruction<pcl::PointXYZ>& cocone)
 Mesh
 reconstruct(const py::object& points, double theta, double rho, double alpha,
             double boundary_ratio, bool boundary_detection, bool stitching,
-            long long threads)
+            long long threads, const py::object& progress)
 {
   using Class = pcl::CoconeReconstruction<pcl::PointXYZ>;
   const char* name = "CoconeReconstruction";
@@ -414,14 +535,18 @@ reconstruct(const py::object& points, double theta, double rho, double alpha,
   cocone.setBoundaryDetection(boundary_detection);
   cocone.setHoleStitching(stitching);
   cocone.setNumberOfThreads(threadCount(threads));
+  ProgressBridge bridge(progress);
+  cocone.setProgressCallback(bridge.hook());
 
   const py::array array = pointArray(points);
   const PointView view = pointView(array);
   auto triangles = std::make_shared<std::vector<TriangleIndices>>();
+  Cloud::Ptr cloud;
   double seconds = 0;
   {
     py::gil_scoped_release release;
-    cocone.setInputCloud(toCloud(view));
+    cloud = toCloud(view);
+    cocone.setInputCloud(cloud);
     std::vector<pcl::Vertices> polygons;
     // Timed as the tool times its computing stage, so that the binding's own share of
     // a call (conversion in, arrays out) can be measured against it.
@@ -435,10 +560,13 @@ reconstruct(const py::object& points, double theta, double rho, double alpha,
                             static_cast<std::uint32_t>(polygon.vertices[1]),
                             static_cast<std::uint32_t>(polygon.vertices[2])});
   }
+  bridge.raiseIfStopped("reconstruct");
   if (!cocone.getErrorMessage().empty())
     throw py::value_error(cocone.getErrorMessage());
 
   Mesh mesh;
+  mesh.cloud = cloud;
+  mesh.far_points = cocone.getFarIndices();
   mesh.vertices = array;
   // The int32 rows view the triangles' own storage, which the array keeps alive.
   auto* owner = new std::shared_ptr<const std::vector<TriangleIndices>>(triangles);
@@ -482,14 +610,19 @@ using BoundaryClass = pcl::BoundarySampleEstimation<pcl::PointXYZ, pcl::Boundary
 /** Runs BoundarySampleEstimation on \a points; raises ValueError when it fails. */
 void
 estimateBoundary(BoundaryClass& estimation, const py::array& array,
-                 pcl::PointCloud<pcl::Boundary>& output)
+                 pcl::PointCloud<pcl::Boundary>& output, const py::object& progress,
+                 const std::string& call)
 {
   const PointView view = pointView(array);
+  ProgressBridge bridge(progress);
+  estimation.setProgressCallback(bridge.hook());
   {
     py::gil_scoped_release release;
     estimation.setInputCloud(toCloud(view));
     estimation.compute(output);
   }
+  estimation.setProgressCallback(nullptr); // the bridge ends here
+  bridge.raiseIfStopped(call);
   if (!estimation.getErrorMessage().empty())
     throw py::value_error(estimation.getErrorMessage());
   warn(estimation.getWarningMessage());
@@ -506,7 +639,8 @@ setBoundaryDiagram(BoundaryClass& estimation, double theta, long long threads)
 
 py::array_t<bool>
 boundarySamples(const py::object& points, double rho, double alpha, double theta,
-                long long band_rings, bool rim_row_completion, long long threads)
+                long long band_rings, bool rim_row_completion, long long threads,
+                const py::object& progress)
 {
   const char* name = "BoundarySampleEstimation";
   BoundaryClass estimation;
@@ -522,7 +656,7 @@ boundarySamples(const py::object& points, double rho, double alpha, double theta
 
   const py::array array = pointArray(points);
   pcl::PointCloud<pcl::Boundary> output;
-  estimateBoundary(estimation, array, output);
+  estimateBoundary(estimation, array, output, progress, "boundary_samples");
   py::array_t<bool> flags(static_cast<py::ssize_t>(output.size()));
   bool* out = flags.mutable_data();
   for (std::size_t i = 0; i < output.size(); ++i)
@@ -538,13 +672,14 @@ floatArray(const std::vector<float>& values)
 }
 
 py::dict
-voronoiGeometry(const py::object& points, double theta, long long threads)
+voronoiGeometry(const py::object& points, double theta, long long threads,
+                const py::object& progress)
 {
   BoundaryClass estimation;
   setBoundaryDiagram(estimation, theta, threads);
   const py::array array = pointArray(points);
   pcl::PointCloud<pcl::Boundary> output;
-  estimateBoundary(estimation, array, output);
+  estimateBoundary(estimation, array, output, progress, "voronoi_geometry");
 
   const std::vector<Eigen::Vector3f>& poles = estimation.getPoleVectors();
   py::array_t<float> pole_vectors(
@@ -580,7 +715,7 @@ setDecimation(DecimationClass& decimation, double theta, bool thin_rims,
 
 py::array_t<std::int32_t>
 decimate(const py::object& points, double rho, double theta, bool thin_rims,
-         long long relaxation_iterations, long long threads)
+         long long relaxation_iterations, long long threads, const py::object& progress)
 {
   const char* name = "VoronoiDecimation";
   DecimationClass decimation;
@@ -591,6 +726,8 @@ decimate(const py::object& points, double rho, double theta, bool thin_rims,
            "setRelaxationIterations", "iterations",
            pcl::cocone::kRelaxationIterationsRange);
   setDecimation(decimation, theta, thin_rims, threads);
+  ProgressBridge bridge(progress);
+  decimation.setProgressCallback(bridge.hook());
 
   const py::array array = pointArray(points);
   const PointView view = pointView(array);
@@ -600,6 +737,7 @@ decimate(const py::object& points, double rho, double theta, bool thin_rims,
     decimation.setInputCloud(toCloud(view));
     decimation.filter(kept);
   }
+  bridge.raiseIfStopped("decimate");
   if (!decimation.getErrorMessage().empty())
     throw py::value_error(decimation.getErrorMessage());
   warn(decimation.getWarningMessage());
@@ -608,10 +746,12 @@ decimate(const py::object& points, double rho, double theta, bool thin_rims,
 
 py::list
 levelsOfDetail(const py::object& points, const std::vector<double>& rhos, double theta,
-               bool thin_rims, long long threads)
+               bool thin_rims, long long threads, const py::object& progress)
 {
   DecimationClass decimation;
   setDecimation(decimation, theta, thin_rims, threads);
+  ProgressBridge bridge(progress);
+  decimation.setProgressCallback(bridge.hook());
   const py::array array = pointArray(points);
   const PointView view = pointView(array);
   std::vector<pcl::Indices> kept;
@@ -621,6 +761,7 @@ levelsOfDetail(const py::object& points, const std::vector<double>& rhos, double
     decimation.setInputCloud(toCloud(view));
     ok = decimation.computeLevelsOfDetail(rhos, kept);
   }
+  bridge.raiseIfStopped("levels_of_detail");
   if (!ok) {
     // A refused rho (PCL_ERROR only) leaves the error message empty.
     for (const double rho : rhos)
@@ -775,6 +916,13 @@ PYBIND11_MODULE(pcl_cocone, m)
       "threads : int, default 0\n"
       "    Worker threads for the per-sample work; 0 uses every core. Results do not\n"
       "    depend on it.\n";
+  const std::string progress_doc =
+      "progress : callable or None, default None\n"
+      "    Called as progress(share) with the share of the run done, from 0 to 1,\n"
+      "    a few times per stage, from the calling thread (with the GIL); 1.0 is\n"
+      "    the last call of a run that completes. Return None or True to go on,\n"
+      "    False to cancel (CancelledError); an exception it raises stops the run\n"
+      "    and propagates. Ctrl-C stops a running call with or without it.\n";
   const std::string raises_doc =
       "\nRaises\n------\n"
       "TypeError\n"
@@ -783,6 +931,10 @@ PYBIND11_MODULE(pcl_cocone, m)
       "    points are not (N, 3); a parameter is outside its range (the setter's\n"
       "    message); the cloud has no 3D Voronoi diagram: empty, all NaN, fewer than\n"
       "    4 distinct points, coplanar or collinear (the class's error message).\n"
+      "CancelledError\n"
+      "    The progress callback returned False.\n"
+      "KeyboardInterrupt\n"
+      "    Ctrl-C (SIGINT) during the run, which stops at its next progress report.\n"
       "\nWarns\n-----\n"
       "RuntimeWarning\n"
       "    The class's warning: far points left out, coarse float rounding.\n";
@@ -799,6 +951,8 @@ PYBIND11_MODULE(pcl_cocone, m)
       "the GIL while it computes, so that Python threads can run it at once.\n"
       "Indices are int32 rows of the input.";
   m.attr("__version__") = PCL_COCONE_VERSION;
+  py::register_exception<Cancelled>(m, "CancelledError", PyExc_RuntimeError)
+      .attr("__doc__") = "A call stopped because its progress callback returned False.";
 
   py::class_<Mesh>(m, "Mesh",
                    "A reconstructed surface whose vertices are the input points.\n\n"
@@ -837,6 +991,25 @@ PYBIND11_MODULE(pcl_cocone, m)
            "row (float64), so indices stay those of the input; its\n"
            "remove_unreferenced_vertices() drops the unused ones. Only this imports\n"
            "Open3D.")
+      .def(
+          "save", &Mesh::save, "path"_a,
+          "Writes the mesh as pcl_cocone_reconstruction does, with the same writer.\n\n"
+          "The format is the extension's (case-insensitive): .ply (binary little\n"
+          "endian, float x y z, triangles as uchar int lists), .vtk (legacy ASCII\n"
+          "POLYDATA) or .obj. The vertices are the input rows with finite\n"
+          "coordinates that are not far, in input order: with no such row left out,\n"
+          "vertex i is row i; otherwise the later rows move up and the triangles are\n"
+          "renumbered to match. Coordinates are the float32 values the\n"
+          "reconstruction used. The file is written beside its target and renamed\n"
+          "over it, so a failed write leaves no partial file.\n"
+          "\nParameters\n----------\n"
+          "path : str or os.PathLike\n"
+          "\nRaises\n------\n"
+          "ValueError\n"
+          "    The extension is none of .ply, .vtk, .obj.\n"
+          "OSError\n"
+          "    The file cannot be written (the system's reason: a missing folder,\n"
+          "    no permission, a full disk).\n")
       .def("__repr__", [](const Mesh& mesh) {
         return "<pcl_cocone.Mesh: " + std::to_string(py::len(mesh.vertices)) +
                " vertices, " + std::to_string(mesh.triangles.shape(0)) +
@@ -872,7 +1045,7 @@ PYBIND11_MODULE(pcl_cocone, m)
       "    original COCONE, for densely sampled closed smooth surfaces only.\n"
       "stitching : bool, default True\n"
       "    Close the holes that are not true boundaries.\n" +
-      threads_doc +
+      threads_doc + progress_doc +
       "\nReturns\n-------\n"
       "Mesh\n"
       "    A cloud too sparse for boundary detection gives few or no triangles and\n"
@@ -885,7 +1058,7 @@ PYBIND11_MODULE(pcl_cocone, m)
         "boundary_detection"_a = cocone.getBoundaryDetection(),
         "stitching"_a = cocone.getHoleStitching(),
         "threads"_a = static_cast<long long>(cocone.getNumberOfThreads()),
-        reconstruct_doc.c_str());
+        "progress"_a = py::none(), reconstruct_doc.c_str());
 
   const std::string boundary_doc =
       "Algorithm BOUNDARY (pcl::BoundarySampleEstimation).\n\n"
@@ -912,7 +1085,7 @@ PYBIND11_MODULE(pcl_cocone, m)
       "rim_row_completion : bool, default True\n"
       "    Beyond the paper: complete the outermost row of samples along each rim\n"
       "    (BOUNDARY alone flags 27-54% of it). False gives BOUNDARY as published.\n" +
-      threads_doc +
+      threads_doc + progress_doc +
       "\nReturns\n-------\n"
       "numpy.ndarray of bool, (N,)\n"
       "    True for a boundary sample; False also for points that took no part\n"
@@ -924,14 +1097,14 @@ PYBIND11_MODULE(pcl_cocone, m)
         "band_rings"_a = static_cast<long long>(boundary.getBoundaryBandRings()),
         "rim_row_completion"_a = boundary.getRimRowCompletion(),
         "threads"_a = static_cast<long long>(boundary.getNumberOfThreads()),
-        boundary_doc.c_str());
+        "progress"_a = py::none(), boundary_doc.c_str());
 
   const std::string geometry_doc =
       "The per-point Voronoi values that BOUNDARY measures.\n\n"
       "pcl::BoundarySampleEstimation's getPoleVectors, getHeights, getCoconeRadii\n"
       "and getRatios. rho and alpha do not change them, so they are not taken.\n"
       "\nParameters\n----------\n" +
-      points_doc + theta_doc + threads_doc +
+      points_doc + theta_doc + threads_doc + progress_doc +
       "\nReturns\n-------\n"
       "dict, one row per input point\n"
       "    pole_vectors: float32 (N, 3), unit pole vectors v_p, a normal estimate\n"
@@ -948,7 +1121,7 @@ PYBIND11_MODULE(pcl_cocone, m)
   m.def("voronoi_geometry", &voronoiGeometry, "points"_a, py::kw_only(),
         "theta"_a = boundary.getCoconeAngle(),
         "threads"_a = static_cast<long long>(boundary.getNumberOfThreads()),
-        geometry_doc.c_str());
+        "progress"_a = py::none(), geometry_doc.c_str());
 
   const std::string rims_doc =
       "thin_rims : bool, default True\n"
@@ -972,7 +1145,7 @@ PYBIND11_MODULE(pcl_cocone, m)
       "\n"
       "    Beyond the paper: rounds of relaxation that even out the kept sample at\n"
       "    the same size; 0 gives DECIMATE's own sample.\n" +
-      threads_doc +
+      threads_doc + progress_doc +
       "\nReturns\n-------\n"
       "numpy.ndarray of int32\n"
       "    The rows of the kept points, ascending: never a non-finite or far one;\n"
@@ -984,7 +1157,7 @@ PYBIND11_MODULE(pcl_cocone, m)
         "relaxation_iterations"_a =
             static_cast<long long>(decimation.getRelaxationIterations()),
         "threads"_a = static_cast<long long>(decimation.getNumberOfThreads()),
-        decimate_doc.c_str());
+        "progress"_a = py::none(), decimate_doc.c_str());
 
   const std::string levels_doc =
       "Nested subsets for several ratio bounds from one DECIMATE run.\n\n"
@@ -995,7 +1168,7 @@ PYBIND11_MODULE(pcl_cocone, m)
       range(c::kRatioBoundRange) +
       "\n"
       "    The ratio bounds, in any order.\n" +
-      theta_doc + rims_doc + threads_doc +
+      theta_doc + rims_doc + threads_doc + progress_doc +
       "\nReturns\n-------\n"
       "list of numpy.ndarray of int32\n"
       "    The kept rows per rho, in the order of rhos; a larger rho keeps a subset\n"
@@ -1005,12 +1178,13 @@ PYBIND11_MODULE(pcl_cocone, m)
         "theta"_a = decimation.getCoconeAngle(),
         "thin_rims"_a = decimation.getThinRims(),
         "threads"_a = static_cast<long long>(decimation.getNumberOfThreads()),
-        levels_doc.c_str());
+        "progress"_a = py::none(), levels_doc.c_str());
 
   m.def("load_points", &loadPoints, "path"_a,
         "The points of a file, as the tools read them (loadPointSamples).\n\n"
         "Formats by extension, case-insensitive: .pcd, .ply, .obj, .off, .xyz,\n"
-        ".pts, .txt. Meshes give their vertices; NaN points are kept, in file\n"
+        ".pts, .txt, .las (LAS 1.0 to 1.4; LAZ is refused with the commands that\n"
+        "decompress it). Meshes give their vertices; NaN points are kept, in file\n"
         "order.\n"
         "\nParameters\n----------\n"
         "path : str or os.PathLike\n"

@@ -3,6 +3,7 @@
 they are there."""
 import os
 import pathlib
+import struct
 
 import numpy as np
 import pytest
@@ -43,8 +44,22 @@ def write_xyz(path):
     path.write_text("# x y z\n" + rows(POINTS))
 
 
+def write_las(path):
+    """LAS 1.2, point format 0 (20-byte records), coordinates in steps of 1/8."""
+    scale = 0.125
+    header = bytearray(227)
+    header[0:4] = b"LASF"
+    header[24:26] = bytes([1, 2])
+    struct.pack_into("<HIIBHI", header, 94, 227, 227, 0, 0, 20, len(POINTS))
+    struct.pack_into("<6d", header, 131, scale, scale, scale, 0.0, 0.0, 0.0)
+    records = b"".join(struct.pack("<3iH6x", *(round(c / scale) for c in p), 100)
+                       for p in POINTS)
+    path.write_bytes(bytes(header) + records)
+
+
 WRITERS = {".pcd": write_pcd, ".ply": write_ply, ".obj": write_obj, ".off": write_off,
-           ".xyz": write_xyz, ".pts": write_xyz, ".txt": write_xyz, ".XYZ": write_xyz}
+           ".xyz": write_xyz, ".pts": write_xyz, ".txt": write_xyz, ".XYZ": write_xyz,
+           ".las": write_las}
 
 
 @pytest.mark.parametrize("extension", WRITERS)
@@ -71,12 +86,23 @@ def test_a_folder_raises_os_error(tmp_path):
     ("points.abc", "1 2 3\n", "unknown extension"),
     ("empty.xyz", "# nothing\n", ""),
     ("broken.off", "OFF\n5 0 0\n1 2\n", ""),
+    ("short.las", "LASF", "truncated"),
 ])
 def test_unusable_contents_raise_value_error_with_the_reader_reason(tmp_path, name,
                                                                     text, message):
     path = tmp_path / name
     path.write_text(text)
     with pytest.raises(ValueError, match=message):
+        pcl_cocone.load_points(path)
+
+
+def test_laz_raises_value_error_that_says_how_to_convert(tmp_path):
+    path = tmp_path / "scan.laz"
+    write_las(path)
+    data = bytearray(path.read_bytes())
+    data[104] |= 0x80  # how LASzip marks compressed point data
+    path.write_bytes(bytes(data))
+    with pytest.raises(ValueError, match="LAZ.*las2las.*pdal translate"):
         pcl_cocone.load_points(path)
 
 

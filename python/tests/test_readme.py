@@ -28,7 +28,8 @@ def test_the_first_example_has_five_lines():
     assert len(blocks()[0].strip().splitlines()) == 5
 
 
-def test_the_python_section_runs_as_written():
+def test_the_python_section_runs_as_written(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # where the examples' files go
     session = {}
     for block in blocks():
         if "to_open3d" in block:

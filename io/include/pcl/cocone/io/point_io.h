@@ -34,7 +34,13 @@ namespace cocone {
  *   points are the `p x y z` records; the normal, colour and command records (`n`,
  *   `d`, `s`, `g`, `o`, `O`, `f`, each with three numbers) are checked and set aside,
  *   `q` ends the stream, and polygon or polyline records (`P`, `L`, `v`, `E`) are an
- *   error.
+ *   error;
+ * - `.las`, `.laz`: LAS 1.0 to 1.4 (ASPRS), point data record formats 0 to 10, the
+ *   legacy or (LAS 1.4) 64-bit point count: fields x, y, z (float, X * scale + offset
+ *   from the header, so that far from the origin, e.g. in UTM coordinates, the float
+ *   spacing grows to centimetres or more: translate such tiles near the origin first),
+ *   intensity (uint16) and classification (uint8). LASzip-compressed data (LAZ) are
+ *   refused with the commands that decompress them.
  *
  * Meshes are read as their vertices: the vertices are the samples. The cloud is
  * unorganized (height 1) unless the file itself is organized (PCD), and keeps every
