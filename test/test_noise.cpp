@@ -2,8 +2,11 @@
 // Scanner noise (core/denoise.h, docs/noise.md): the estimate tells clean clouds from
 // noisy ones, and on noisy ones the reconstruction built on the smoothed copy has the
 // exact topology while its vertices stay the input samples.
+#include "denoise/restore.h"
+
 #include <pcl/cocone/cocone_reconstruction.h>
 #include <pcl/cocone/core/denoise.h>
+#include <pcl/cocone/core/mesh_geometry.h>
 #include <pcl/cocone/core/mesh_topology.h>
 #include <pcl/cocone/core/voronoi_cocone.h>
 #include <pcl/point_types.h>
@@ -126,6 +129,45 @@ TEST(NoiseEstimate, SmoothingKeepsDuplicatesAndRemovesNoise)
   EXPECT_LT(after, 0.5 * before);
 }
 
+// Back at the input positions, a mesh chosen on the smoothed ones may cross itself:
+// the repair leaves a manifold without crossing, its holes filled where the fill can
+// avoid the rest of the mesh.
+TEST(NoisyReconstruction, RestoreRemovesCrossingsAndFillsTheirHoles)
+{
+  // A flat 12 x 12 grid of unit squares, two triangles each: the smoothed mesh.
+  constexpr std::uint32_t side = 13;
+  Points points;
+  for (std::uint32_t y = 0; y < side; ++y)
+    for (std::uint32_t x = 0; x < side; ++x)
+      points.emplace_back(x, y, 0.05 * ((x * 7 + y * 3) % 5)); // not exactly coplanar
+  std::vector<TriangleIndices> triangles;
+  for (std::uint32_t y = 0; y + 1 < side; ++y)
+    for (std::uint32_t x = 0; x + 1 < side; ++x) {
+      const std::uint32_t a = y * side + x, b = a + 1, c = a + side, d = c + 1;
+      triangles.push_back({a, b, d});
+      triangles.push_back({a, d, c});
+    }
+  ASSERT_EQ(pcl::cocone::countSelfIntersections(points, triangles), 0u);
+  // The input positions: two samples pushed across their neighbours, as noise of a
+  // spacing and more can.
+  points[6 * side + 6] += Eigen::Vector3d(1.6, 0.7, 0.02);
+  points[3 * side + 9] += Eigen::Vector3d(-0.4, 1.5, -0.03);
+  ASSERT_GT(pcl::cocone::countSelfIntersections(points, triangles), 0u);
+  const std::size_t before = triangles.size();
+  const pcl::cocone::detail::RestoreRepair repair =
+      pcl::cocone::detail::restoreInputPositions(points, triangles);
+  std::cout << "[ measured ] grid: " << repair.removed_triangles << " removed, "
+            << repair.filled_triangles << " filled, " << before << " -> "
+            << triangles.size() << " triangles" << std::endl;
+  EXPECT_GT(repair.removed_triangles, 0u);
+  EXPECT_EQ(triangles.size(),
+            before - repair.removed_triangles + repair.filled_triangles);
+  const MeshTopology topology = expectValidSurface(points, triangles, "grid");
+  EXPECT_EQ(topology.components, 1u);
+  // The grid's own rim stays the only boundary where every hole could be filled.
+  EXPECT_GE(topology.boundary_loops.size(), 1u);
+}
+
 struct NoisyCase
 {
   Generator generate;
@@ -183,8 +225,16 @@ TEST_P(NoisyShapes, ExactTopologyThroughTheSamples)
 INSTANTIATE_TEST_SUITE_P(Noise, NoisyShapes,
                          ::testing::Values(NoisyCase{sampleTorus, 100000, 0.1},
                                            NoisyCase{sampleTorus, 100000, 0.3},
+                                           NoisyCase{sampleTorus, 100000, 0.5},
                                            NoisyCase{sampleHemisphere, 100000, 0.1},
-                                           NoisyCase{sampleHemisphere, 100000, 0.3}),
+                                           NoisyCase{sampleHemisphere, 100000, 0.3},
+                                           NoisyCase{sampleHemisphere, 100000, 0.5},
+                                           NoisyCase{sampleGenus3, 100000, 0.1},
+                                           NoisyCase{sampleGenus3, 100000, 0.3},
+                                           NoisyCase{sampleOpenCylinder, 100000, 0.1},
+                                           NoisyCase{sampleOpenCylinder, 100000, 0.3},
+                                           NoisyCase{sampleCube, 100000, 0.1},
+                                           NoisyCase{sampleCube, 100000, 0.3}),
                          [](const ::testing::TestParamInfo<NoisyCase>& info) {
                            const SampledShape name_only = info.param.generate(16, 1);
                            return name_only.name + "_sigma" +
