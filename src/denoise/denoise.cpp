@@ -187,8 +187,8 @@ probeNoise(const std::vector<Eigen::Vector3d>& positions, const std::uint32_t* i
   return std::sqrt(std::max(variance, 0.0)) / near.spacing();
 }
 
-/** The median of probeNoise over the probes whose neighbours \a neighbours lists
- * (kMaxFitPoints indices each, one probe after the other). */
+/** The lower quartile (kNoiseQuantile) of probeNoise over the probes whose neighbours
+ * \a neighbours lists (kMaxFitPoints indices each, one probe after the other). */
 NoiseEstimate
 measureNoise(const std::vector<Eigen::Vector3d>& positions,
              const std::vector<std::uint32_t>& neighbours, unsigned threads)
