@@ -47,6 +47,7 @@ commandLine()
            "-rgb",
            "also write an rgb field: red for boundary samples, grey for the others, so "
            "that pcl_viewer shows them as in the paper's figure 4"),
+       denoiseOption(),
        threadsOption(),
        verboseOption()});
 }
@@ -62,6 +63,7 @@ compute(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLine& 
   estimation.setBoundaryBandRings(cmd.count("-band"));
   estimation.setRimRowCompletion(!cmd.flag("-no_rim_completion"));
   estimation.setNumberOfThreads(cmd.count("-threads"));
+  estimation.setDenoise(denoiseMode(cmd));
   estimation.setProgressCallback(terminalProgress());
   if (cmd.verbose())
     printDetail("Parameters",

@@ -45,6 +45,7 @@ commandLine()
            "no boundary detection: the original COCONE, for densely sampled closed "
            "smooth surfaces only"),
        flagOption("-no_stitch", "leave every hole open"),
+       denoiseOption(),
        threadsOption(),
        verboseOption()});
 }
@@ -95,6 +96,7 @@ reconstruct(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLi
   cocone.setBoundaryDetection(!cmd.flag("-no_boundary"));
   cocone.setHoleStitching(!cmd.flag("-no_stitch"));
   cocone.setNumberOfThreads(cmd.count("-threads"));
+  cocone.setDenoise(denoiseMode(cmd));
   cocone.setProgressCallback(terminalProgress());
   if (cmd.verbose())
     printDetail("Parameters",

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "tool_common.h"
 
+#include <pcl/cocone/core/denoise.h>
 #include <pcl/cocone/io/point_io.h>
 #include <pcl/cocone/io/writers.h>
 #include <pcl/common/io.h>
@@ -140,6 +141,12 @@ double
 parseValue(const Option& option, const std::string& text)
 {
   double value = 0;
+  if (option.kind == ValueKind::choice) {
+    const auto word = std::find(option.choices.begin(), option.choices.end(), text);
+    if (word == option.choices.end())
+      fail(option.name + ": " + inQuotes(text) + " is not one of " + rangeText(option));
+    return static_cast<double>(word - option.choices.begin());
+  }
   if (option.kind == ValueKind::integer) {
     long long number = 0;
     const char* last = text.data() + text.size();
@@ -254,6 +261,25 @@ threadsOption()
           0,
           "0 = every core",
           ParameterRange{0, 4096, false, false}};
+}
+
+Option
+denoiseOption()
+{
+  Option option;
+  option.name = "-denoise";
+  option.kind = ValueKind::choice;
+  option.argument = "MODE";
+  option.help = "scanner noise: build the Voronoi diagram on a smoothed copy of the "
+                "samples (the output keeps the input points); auto smooths when the "
+                "measured noise exceeds " +
+                formatNumber(pcl::cocone::kNoiseThreshold) +
+                " sample spacings (docs/noise.md)";
+  option.choices = {"auto", "on", "off"};
+  option.default_value = 0;
+  option.default_text = "auto";
+  option.range_text = "auto|on|off";
+  return option;
 }
 
 Option
@@ -388,6 +414,21 @@ unsigned
 CommandLine::count(const std::string& name) const
 {
   return static_cast<unsigned>(value(name));
+}
+
+const std::string&
+CommandLine::choice(const std::string& name) const
+{
+  const Option& o = option(name);
+  return o.choices[static_cast<std::size_t>(value(name))];
+}
+
+pcl::cocone::DenoiseMode
+denoiseMode(const CommandLine& cmd)
+{
+  pcl::cocone::DenoiseMode mode = pcl::cocone::DenoiseMode::automatic;
+  pcl::cocone::parseDenoiseMode(cmd.choice("-denoise"), mode);
+  return mode;
 }
 
 bool

@@ -72,6 +72,7 @@ enum class ValueKind
   flag,    ///< a switch without value
   real,    ///< a floating-point value
   integer, ///< a whole number
+  choice,  ///< one word of Option::choices
 };
 
 /** \brief One command-line option. */
@@ -87,6 +88,9 @@ struct Option
   /// classes the library's constant, e.g. pcl::cocone::kRatioBoundRange
   ParameterRange range{};
   std::string range_text{}; ///< the range as shown, e.g. "(0, pi/2)"; derived if empty
+  /// the words of a ValueKind::choice option; its value is the position of the word
+  /// given, its default_value that of the default
+  std::vector<std::string> choices{};
 };
 
 /** \brief A switch without value. */
@@ -99,6 +103,7 @@ Option ratioBoundOption(double default_value, const std::string& help);
 Option coconeAngleOption();
 Option normalAngleOption();
 Option threadsOption();
+Option denoiseOption();
 Option verboseOption();
 /** \} */
 
@@ -145,6 +150,9 @@ public:
   double value(const std::string& name) const;
   /** \brief The value of an integer option. */
   unsigned count(const std::string& name) const;
+  /** \brief The word given to a ValueKind::choice option (its default when not given).
+   */
+  const std::string& choice(const std::string& name) const;
   /** \brief Whether a switch was given. */
   bool flag(const std::string& name) const;
   bool
@@ -165,6 +173,9 @@ private:
   std::string input_;
   std::string output_;
 };
+
+/** \brief The mode given with denoiseOption() ("-denoise"). */
+pcl::cocone::DenoiseMode denoiseMode(const CommandLine& cmd);
 
 // ---------------------------------------------------------------------------------
 // Stages

@@ -42,6 +42,7 @@ commandLine()
         "same count (Lloyd's iteration over the input points; rims and sharp features "
         "stay); 0 gives DECIMATE's own points",
         10, "", pcl::cocone::kRelaxationIterationsRange},
+       denoiseOption(),
        threadsOption(),
        verboseOption()});
 }
@@ -56,6 +57,7 @@ decimate(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLine&
   decimation.setThinRims(!cmd.flag("-keep_rims"));
   decimation.setRelaxationIterations(cmd.count("-relax"));
   decimation.setNumberOfThreads(cmd.count("-threads"));
+  decimation.setDenoise(denoiseMode(cmd));
   decimation.setProgressCallback(terminalProgress());
   if (cmd.verbose())
     printDetail("Parameters",

@@ -207,9 +207,9 @@ segmentCrossesTriangle(const std::vector<Eigen::Vector3d>& points, std::uint32_t
          CGAL::coplanar_orientation(s, y, x, q) != CGAL::NEGATIVE;
 }
 
-std::size_t
-countSelfIntersections(const std::vector<Eigen::Vector3d>& points,
-                       const std::vector<TriangleIndices>& triangles)
+std::vector<std::pair<std::size_t, std::size_t>>
+findSelfIntersections(const std::vector<Eigen::Vector3d>& points,
+                      const std::vector<TriangleIndices>& triangles)
 {
   for (const TriangleIndices& t : triangles)
     for (const std::uint32_t v : t)
@@ -234,14 +234,24 @@ countSelfIntersections(const std::vector<Eigen::Vector3d>& points,
       continue;
     boxes.emplace_back(p[tri[0]].bbox() + p[tri[1]].bbox() + p[tri[2]].bbox(), t);
   }
-  std::size_t count = 0;
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
   CGAL::box_self_intersection_d(
       boxes.begin(), boxes.end(), [&](const Box& a, const Box& b) {
         if (intersectBeyondSharedFeatures(p.data(), triangles[a.info()],
                                           triangles[b.info()]))
-          ++count;
+          pairs.emplace_back(std::min(a.info(), b.info()),
+                             std::max(a.info(), b.info()));
       });
-  return count;
+  // CGAL meets the boxes in an order of its choosing.
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+std::size_t
+countSelfIntersections(const std::vector<Eigen::Vector3d>& points,
+                       const std::vector<TriangleIndices>& triangles)
+{
+  return findSelfIntersections(points, triangles).size();
 }
 
 } // namespace cocone

@@ -6,6 +6,7 @@
 // fills and insertions.
 #include "common/progress.h"
 #include "common/status_guard.h"
+#include "denoise/restore.h"
 #include "reconstruction/candidates.h"
 #include "reconstruction/crossings.h"
 #include "reconstruction/fill.h"
@@ -153,6 +154,40 @@ runStages(const VoronoiCocone& voronoi, const ReconstructionParameters& paramete
   progress.report(1);
 }
 
+/** The mesh was chosen on the smoothed copy of the samples: back at the input
+ * positions, no triangle may cross another (see detail::restoreInputPositions); the
+ * open loops and unused samples are those of the repaired mesh. */
+void
+restoreInputPositions(const VoronoiCocone& voronoi,
+                      std::vector<TriangleIndices>& output,
+                      ReconstructionReport& report)
+{
+  const detail::RestoreRepair repair =
+      detail::restoreInputPositions(voronoi.centeredInputPoints(), output);
+  report.restore_removed_triangles = repair.removed_triangles;
+  report.restore_filled_triangles = repair.filled_triangles;
+  if (repair.removed_triangles == 0)
+    return;
+  const MeshTopology topology = analyzeTriangleMesh(output);
+  PCL_DEBUG("[pcl::cocone::reconstructSurface] back at the input positions: %zu "
+            "triangles removed (crossing or pinched), %zu filled in again; %zu "
+            "non-manifold edges, %zu non-manifold vertices, %zu duplicates\n",
+            repair.removed_triangles, repair.filled_triangles,
+            topology.non_manifold_edges, topology.non_manifold_vertices,
+            topology.duplicate_triangles);
+  report.open_loops.clear();
+  for (const std::vector<std::uint32_t>& loop : topology.boundary_loops)
+    report.open_loops.emplace_back(loop.begin(), loop.end());
+  std::vector<std::uint8_t> used(voronoi.size(), 0);
+  for (const TriangleIndices& t : output)
+    for (const SampleIndex v : t)
+      used[v] = 1;
+  report.unused_samples.clear();
+  for (SampleIndex v = 0; v < voronoi.size(); ++v)
+    if (!used[v])
+      report.unused_samples.push_back(v);
+}
+
 } // namespace
 
 Status
@@ -176,6 +211,8 @@ reconstructSurface(const VoronoiCocone& voronoi,
   }
   const Status status = detail::runGuarded("the reconstruction", message, [&] {
     runStages(voronoi, parameters, triangles, report, progress);
+    if (voronoi.denoised())
+      restoreInputPositions(voronoi, triangles, report);
     return Status::ok;
   });
   if (status != Status::ok) {

@@ -8,6 +8,7 @@
 #include "voronoi/cgal_delaunay.h"
 #include "voronoi/voronoi_cocone_impl.h"
 
+#include <pcl/cocone/core/denoise.h>
 #include <pcl/cocone/parameters.h>
 #include <pcl/console/print.h>
 
@@ -128,6 +129,42 @@ const std::vector<Eigen::Vector3d>&
 VoronoiCocone::centeredPoints() const
 {
   return impl_->centered;
+}
+
+const std::vector<Eigen::Vector3d>&
+VoronoiCocone::centeredInputPoints() const
+{
+  return impl_->input_centered.empty() ? impl_->centered : impl_->input_centered;
+}
+
+bool
+VoronoiCocone::denoised() const
+{
+  return !impl_->input_centered.empty();
+}
+
+const NoiseEstimate&
+VoronoiCocone::noiseEstimate() const
+{
+  return impl_->noise;
+}
+
+unsigned
+VoronoiCocone::smoothingRounds() const
+{
+  return impl_->smoothing_rounds;
+}
+
+void
+VoronoiCocone::setDenoise(DenoiseMode mode)
+{
+  parameters_.denoise = mode;
+}
+
+DenoiseMode
+VoronoiCocone::getDenoise() const
+{
+  return parameters_.denoise;
 }
 
 const Eigen::Vector3d&
@@ -362,6 +399,36 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
   const auto seconds_since = [](Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
   };
+  // Scanner noise (core/denoise.h): the diagram of a noisy cloud is built on a smoothed
+  // copy, while every result stays indexed by the samples as given.
+  const Clock::time_point denoise_start = Clock::now();
+  std::vector<Eigen::Vector3d> smoothed;
+  if (parameters.denoise != DenoiseMode::off) {
+    std::string denoise_message;
+    const Status denoise_status =
+        runGuarded("the noise handling", &denoise_message, [&] {
+          d.noise = estimateNoise(points, parameters.threads);
+          if (parameters.denoise == DenoiseMode::on ||
+              d.noise.relative_noise > kNoiseThreshold) {
+            SmoothedSamples copy = smoothSamples(points, parameters.threads);
+            d.smoothing_rounds = copy.rounds;
+            smoothed = std::move(copy.points);
+          }
+          return Status::ok;
+        });
+    if (denoise_status != Status::ok)
+      return fail(denoise_status, denoise_message);
+  }
+  const bool denoised = !smoothed.empty();
+  const std::vector<Eigen::Vector3d>& geometry = denoised ? smoothed : points;
+  d.timings.denoise = seconds_since(denoise_start);
+  if (parameters.denoise != DenoiseMode::off)
+    PCL_DEBUG(
+        "[pcl::cocone::VoronoiCocone::compute] noise %.4f spacings (threshold %g): "
+        "%s, %u smoothing rounds, %.3f s\n",
+        d.noise.relative_noise, kNoiseThreshold, denoised ? "smoothed" : "as given",
+        d.smoothing_rounds, d.timings.denoise);
+
   const Clock::time_point start = Clock::now();
   // The triangulation lives only through compute(): the geometry keeps what the
   // queries after it read (Impl::stars) and frees it.
@@ -372,7 +439,12 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
       d.offset = sum / static_cast<double>(n);
       d.centered.resize(n);
       for (std::size_t i = 0; i < n; ++i)
-        d.centered[i] = points[i] - d.offset;
+        d.centered[i] = geometry[i] - d.offset;
+      if (denoised) {
+        d.input_centered.resize(n);
+        for (std::size_t i = 0; i < n; ++i)
+          d.input_centered[i] = points[i] - d.offset;
+      }
 
       // Insert in CGAL's spatial order (a Hilbert curve on random rounds), far faster
       // than input order. This is CGAL's own bulk insertion of points with info, with

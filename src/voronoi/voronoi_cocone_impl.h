@@ -26,7 +26,12 @@ struct VoronoiCocone::Impl
   VoronoiCocone::Timings timings;
   std::string message;
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();
-  std::vector<Eigen::Vector3d> centered;
+  std::vector<Eigen::Vector3d> centered; // the diagram's points: smoothed when denoised
+  // The samples as given, centered, when the diagram was built on a smoothed copy;
+  // empty otherwise (then they are #centered).
+  std::vector<Eigen::Vector3d> input_centered;
+  NoiseEstimate noise;
+  unsigned smoothing_rounds = 0;
   std::vector<SampleIndex> representative;
   detail::DelaunayStars stars; // after compute(); cleared by decimate()
   std::size_t unique_count = 0;

@@ -185,6 +185,24 @@ public:
     return voronoi_parameters_.threads;
   }
 
+  /** \brief Whether the diagram is built on a smoothed copy of the samples, for
+   * scanner noise (see cocone::VoronoiParameters::denoise and docs/noise.md): every
+   * index handed out is still an input index, and every position the input's.
+   * \param[in] mode cocone::DenoiseMode::automatic (default: smooth when the measured
+   *            noise exceeds cocone::kNoiseThreshold), on or off; any value is valid */
+  void
+  setDenoise(cocone::DenoiseMode mode)
+  {
+    voronoi_parameters_.denoise = mode;
+  }
+  /** \brief Get the denoising mode (see setDenoise).
+   * \return the mode; cocone::DenoiseMode::automatic by default */
+  cocone::DenoiseMode
+  getDenoise() const
+  {
+    return voronoi_parameters_.denoise;
+  }
+
   /** \name Per-point results of the last compute()
    * One entry per output row, i.e. per index of the selection (setIndices) in its
    * order; row r describes input cloud point indices[r]. Empty after a run without a

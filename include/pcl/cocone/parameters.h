@@ -68,6 +68,47 @@ constexpr ParameterRange kBandRingsRange{0, 64, false, false};
 /** \brief Valid range of the number of relaxation rounds after DECIMATE: [0, 1000]. */
 constexpr ParameterRange kRelaxationIterationsRange{0, 1000, false, false};
 
+/** \brief Whether the diagram is built on a smoothed copy of the samples (see
+ * VoronoiParameters::denoise and docs/noise.md). */
+enum class DenoiseMode
+{
+  automatic, ///< measure the cloud's noise (core/denoise.h) and smooth when it is noisy
+  on,        ///< always smooth
+  off        ///< never smooth: the diagram of the samples as given
+};
+
+/** \brief The name of a denoising mode, as the tools take it.
+ * \param[in] mode the mode
+ * \return "auto", "on" or "off" */
+inline const char*
+toString(DenoiseMode mode)
+{
+  switch (mode) {
+  case DenoiseMode::on:
+    return "on";
+  case DenoiseMode::off:
+    return "off";
+  default:
+    return "auto";
+  }
+}
+
+/** \brief The mode named \a text ("auto", "on" or "off").
+ * \param[in] text the name
+ * \param[out] mode the mode, when \a text names one (unchanged otherwise)
+ * \return whether \a text names a mode */
+inline bool
+parseDenoiseMode(const std::string& text, DenoiseMode& mode)
+{
+  for (const DenoiseMode m :
+       {DenoiseMode::automatic, DenoiseMode::on, DenoiseMode::off})
+    if (text == toString(m)) {
+      mode = m;
+      return true;
+    }
+  return false;
+}
+
 /** \brief Parameters of the Voronoi diagram that every class builds first. */
 struct VoronoiParameters
 {
@@ -78,6 +119,15 @@ struct VoronoiParameters
   /** \brief Worker threads of the per-sample work; 0 (default) lets TBB use every core;
    * any value is valid. Results do not depend on it. */
   unsigned threads = 0;
+  /** \brief Beyond the paper: scanner noise. When on, the diagram (and with it every
+   * pole, flag and triangle choice) is built on a smoothed copy of the samples (scale
+   * space: each sample moved onto a quadric fitted to its nearest neighbours, a few
+   * rounds), while every result stays indexed by the input samples, so that a mesh
+   * keeps the input coordinates as its vertices. Automatic (default): on when the
+   * cloud's measured noise exceeds kNoiseThreshold (core/denoise.h; clean clouds
+   * measure below it and keep the results of the diagram as published); on; off. Any
+   * value is valid. */
+  DenoiseMode denoise = DenoiseMode::automatic;
 };
 
 /** \brief Parameters of BOUNDARY. rho and alpha default to the paper's practical

@@ -46,6 +46,11 @@ struct ReconstructionStatistics
   /** Triangles removed because they crossed another one (undersampled or noisy parts);
    * their holes are stitched. */
   std::size_t crossing_triangles = 0;
+  /** When the diagram was built on a smoothed copy of the samples (denoising, see
+   * docs/noise.md): triangles removed because they cross another one at the input
+   * positions, and triangles added to fill their holes again. 0 otherwise. */
+  std::size_t restore_removed_triangles = 0;
+  std::size_t restore_filled_triangles = 0; ///< see restore_removed_triangles
   /** \brief Wall-clock seconds of each stage. */
   struct Timings
   {

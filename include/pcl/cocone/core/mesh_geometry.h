@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace pcl {
@@ -43,6 +44,18 @@ trianglesIntersect(const std::vector<Eigen::Vector3d>& points, const TriangleInd
 PCL_COCONE_EXPORT bool
 segmentCrossesTriangle(const std::vector<Eigen::Vector3d>& points, std::uint32_t a,
                        std::uint32_t b, const TriangleIndices& t);
+
+/** \brief The pairs of triangles of a mesh that intersect (see trianglesIntersect).
+ * Triangles without area (a repeated index or collinear corners) are skipped.
+ * Bounding-box filtered: O(T log T) for a well-spread mesh.
+ * \param[in] points the vertex coordinates (any unit)
+ * \param[in] triangles the mesh, as index triples into \a points
+ * \return the intersecting pairs as positions in \a triangles, the smaller first,
+ *         sorted; empty for a mesh without self-intersection
+ * \throws std::out_of_range for an index outside \a points */
+PCL_COCONE_EXPORT std::vector<std::pair<std::size_t, std::size_t>>
+findSelfIntersections(const std::vector<Eigen::Vector3d>& points,
+                      const std::vector<TriangleIndices>& triangles);
 
 /** \brief Counts the pairs of triangles of a mesh that intersect (see
  * trianglesIntersect). Triangles without area (a repeated index or collinear corners)

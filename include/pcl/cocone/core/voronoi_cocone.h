@@ -17,6 +17,7 @@
  */
 #pragma once
 
+#include <pcl/cocone/core/denoise.h>
 #include <pcl/cocone/core/status.h>
 #include <pcl/cocone/export.h>
 #include <pcl/cocone/parameters.h>
@@ -201,6 +202,7 @@ public:
   /** \brief Wall-clock seconds of the stages of the last compute(). */
   struct Timings
   {
+    double denoise = 0;  ///< noise estimate and smoothing (0 when denoising is off)
     double delaunay = 0; ///< triangulation, duplicates included
     double geometry = 0; ///< circumcenters, poles, radii, marks, incidence lists
   };
@@ -245,8 +247,39 @@ public:
 
   /** \brief The samples translated to their centroid (the frame CGAL works in).
    * \return one point per sample (indexed by SampleIndex, duplicates included), in
-   *         input units: sample i = centeredPoints()[i] + offset() */
+   *         input units: sample i = centeredPoints()[i] + offset(), or its smoothed
+   *         copy when denoised() (then see centeredInputPoints()) */
   const std::vector<Eigen::Vector3d>& centeredPoints() const;
+
+  /** \brief The samples as given to compute(), translated by offset(): the same as
+   * centeredPoints() unless the diagram was built on a smoothed copy (denoised()).
+   * \return one point per sample (indexed by SampleIndex, duplicates included), in
+   *         input units */
+  const std::vector<Eigen::Vector3d>& centeredInputPoints() const;
+
+  /** \brief Whether the last compute() built the diagram on a smoothed copy of the
+   * samples (VoronoiParameters::denoise, core/denoise.h): then centeredPoints(), the
+   * poles and every other position it hands out are those of the copy, and
+   * centeredInputPoints() holds the samples as given.
+   * \return true when the diagram is that of the smoothed copy */
+  bool denoised() const;
+
+  /** \brief The noise the last compute() measured (estimateNoise).
+   * \return the estimate; relative_noise 0 when denoising is off or nothing could be
+   *         measured */
+  const NoiseEstimate& noiseEstimate() const;
+
+  /** \brief The smoothing rounds the last compute() ran (SmoothedSamples::rounds).
+   * \return 0 unless denoised() */
+  unsigned smoothingRounds() const;
+
+  /** \brief Set whether the next compute() builds the diagram on a smoothed copy of
+   * the samples (see VoronoiParameters::denoise).
+   * \param[in] mode DenoiseMode::automatic (default), on or off */
+  void setDenoise(DenoiseMode mode);
+  /** \brief Get the denoising mode (see setDenoise).
+   * \return the mode */
+  DenoiseMode getDenoise() const;
 
   /** \brief The translation applied: sample = centered point + offset().
    * \return the centroid of the samples (duplicates included), in input units; zero

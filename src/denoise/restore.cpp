@@ -1,0 +1,212 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "denoise/restore.h"
+
+#include "reconstruction/least_area_fill.h"
+
+#include <pcl/cocone/core/mesh_geometry.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <set>
+#include <cstdint>
+#include <unordered_set>
+#include <utility>
+
+namespace pcl {
+namespace cocone {
+namespace detail {
+
+namespace {
+
+std::uint64_t
+edgeKey(std::uint32_t a, std::uint32_t b)
+{
+  if (a > b)
+    std::swap(a, b);
+  return (std::uint64_t(a) << 32) | b;
+}
+
+/** Fills the holes of \a triangles through a vertex flagged in \a touched; returns the
+ * number of triangles added. */
+std::size_t
+fillHoles(const std::vector<Eigen::Vector3d>& points,
+          const std::vector<std::uint8_t>& touched,
+          std::vector<TriangleIndices>& triangles)
+{
+  const MeshTopology topology = analyzeTriangleMesh(triangles);
+  std::unordered_set<std::uint64_t> edges;
+  for (const TriangleIndices& t : triangles)
+    for (int k = 0; k < 3; ++k)
+      edges.insert(edgeKey(t[k], t[(k + 1) % 3]));
+  const auto is_edge = [&](std::uint32_t a, std::uint32_t b) {
+    return edges.count(edgeKey(a, b)) > 0;
+  };
+  // A fill must not repeat a triangle: the boundary of a triangle left alone is a loop
+  // whose least-area fill is the triangle itself.
+  std::set<std::array<std::uint32_t, 3>> present;
+  const auto sorted = [](TriangleIndices t) {
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  for (const TriangleIndices& t : triangles)
+    present.insert(sorted(t));
+  std::size_t added = 0;
+  LeastAreaFillScratch scratch;
+  std::vector<TriangleIndices> obstacles, fill;
+  std::vector<std::uint32_t> blockers;
+  for (const std::vector<std::uint32_t>& loop : topology.boundary_loops) {
+    if (loop.size() > kMaxRestoreLoop ||
+        std::none_of(loop.begin(), loop.end(),
+                     [&](std::uint32_t v) { return touched[v] != 0; }))
+      continue;
+    Eigen::AlignedBox3d box;
+    for (const std::uint32_t v : loop)
+      box.extend(points[v]);
+    // The fill stays near its loop: the triangles whose box meets the loop's, grown
+    // by its own size, are the ones it could cross.
+    box.extend(box.max() + box.diagonal());
+    box.extend(box.min() - box.diagonal());
+    obstacles.clear();
+    for (const TriangleIndices& t : triangles) {
+      Eigen::AlignedBox3d own(points[t[0]]);
+      own.extend(points[t[1]]);
+      own.extend(points[t[2]]);
+      if (own.intersects(box))
+        obstacles.push_back(t);
+    }
+    if (!fillLoopByLeastArea(points, loop, is_edge, obstacles, fill, blockers,
+                             scratch) ||
+        std::any_of(fill.begin(), fill.end(), [&](const TriangleIndices& t) {
+          return present.count(sorted(t)) > 0;
+        }))
+      continue;
+    for (const TriangleIndices& t : fill) {
+      present.insert(sorted(t));
+      triangles.push_back(t);
+      for (int k = 0; k < 3; ++k)
+        edges.insert(edgeKey(t[k], t[(k + 1) % 3]));
+    }
+    added += fill.size();
+  }
+  return added;
+}
+
+/** Removes, at every vertex where the triangles of \a triangles form more than one fan
+ * (triangles joined through edges at the vertex), every fan but the one with the most
+ * triangles (ties: the one holding the earliest triangle), until every vertex has one
+ * fan: removing crossing triangles can pinch the mesh there. Flags the vertices of the
+ * removed triangles in \a touched; returns how many were removed. */
+std::size_t
+removePinches(std::vector<TriangleIndices>& triangles,
+              std::vector<std::uint8_t>& touched)
+{
+  std::size_t removed_total = 0;
+  for (;;) {
+    // The triangles at each vertex, in triangle order.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>>
+        incidence; // (vertex, triangle)
+    incidence.reserve(3 * triangles.size());
+    for (std::uint32_t t = 0; t < triangles.size(); ++t)
+      for (const std::uint32_t v : triangles[t])
+        incidence.emplace_back(v, t);
+    std::sort(incidence.begin(), incidence.end());
+    std::vector<std::uint8_t> removed(triangles.size(), 0);
+    std::size_t removed_now = 0;
+    std::vector<std::uint32_t> around, fan_of, size_of;
+    for (std::size_t first = 0; first < incidence.size();) {
+      const std::uint32_t v = incidence[first].first;
+      std::size_t last = first;
+      around.clear();
+      while (last < incidence.size() && incidence[last].first == v)
+        around.push_back(incidence[last++].second);
+      first = last;
+      // Fans by union of the triangles at v that share an edge at v (a second vertex).
+      const std::size_t m = around.size();
+      fan_of.assign(m, 0);
+      for (std::size_t i = 0; i < m; ++i)
+        fan_of[i] = static_cast<std::uint32_t>(i);
+      const auto root = [&](std::uint32_t i) {
+        while (fan_of[i] != i)
+          i = fan_of[i] = fan_of[fan_of[i]];
+        return i;
+      };
+      for (std::size_t i = 0; i < m; ++i)
+        for (std::size_t j = i + 1; j < m; ++j) {
+          int shared = 0;
+          for (const std::uint32_t a : triangles[around[i]])
+            for (const std::uint32_t b : triangles[around[j]])
+              shared += a == b;
+          if (shared >= 2) // v and one more vertex: an edge at v
+            fan_of[root(static_cast<std::uint32_t>(i))] =
+                root(static_cast<std::uint32_t>(j));
+        }
+      size_of.assign(m, 0);
+      for (std::size_t i = 0; i < m; ++i)
+        ++size_of[root(static_cast<std::uint32_t>(i))];
+      std::uint32_t keep = root(0);
+      for (std::size_t i = 0; i < m; ++i)
+        if (size_of[root(static_cast<std::uint32_t>(i))] > size_of[keep])
+          keep = root(static_cast<std::uint32_t>(i));
+      for (std::size_t i = 0; i < m; ++i)
+        if (root(static_cast<std::uint32_t>(i)) != keep && !removed[around[i]]) {
+          removed[around[i]] = 1;
+          ++removed_now;
+        }
+    }
+    if (removed_now == 0)
+      return removed_total;
+    std::size_t kept = 0;
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      if (removed[t]) {
+        for (const std::uint32_t v : triangles[t])
+          touched[v] = 1;
+        continue;
+      }
+      triangles[kept++] = triangles[t];
+    }
+    triangles.resize(kept);
+    removed_total += removed_now;
+  }
+}
+
+} // namespace
+
+RestoreRepair
+restoreInputPositions(const std::vector<Eigen::Vector3d>& points,
+                      std::vector<TriangleIndices>& triangles)
+{
+  RestoreRepair repair;
+  std::vector<std::pair<std::size_t, std::size_t>> pairs =
+      findSelfIntersections(points, triangles);
+  // Two rounds remove and fill; a third removes what still crosses without filling,
+  // which cannot make a new crossing.
+  for (int round = 0; round < 3 && !pairs.empty(); ++round) {
+    std::vector<std::uint8_t> removed(triangles.size(), 0);
+    for (const auto& [a, b] : pairs)
+      removed[a] = removed[b] = 1;
+    std::vector<std::uint8_t> touched(points.size(), 0);
+    std::size_t kept = 0;
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      if (removed[t]) {
+        for (const std::uint32_t v : triangles[t])
+          touched[v] = 1;
+        ++repair.removed_triangles;
+        continue;
+      }
+      triangles[kept++] = triangles[t];
+    }
+    triangles.resize(kept);
+    repair.removed_triangles += removePinches(triangles, touched);
+    if (round == 2)
+      break;
+    repair.filled_triangles += fillHoles(points, touched, triangles);
+    pairs = findSelfIntersections(points, triangles);
+  }
+  return repair;
+}
+
+} // namespace detail
+} // namespace cocone
+} // namespace pcl

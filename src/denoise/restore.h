@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Private: what the reconstruction does when the diagram was built on a smoothed copy
+// (core/denoise.h) and the mesh returns to the samples as given: the triangles that
+// now cross another one are removed and their holes filled again. Never installed.
+#pragma once
+
+#include <pcl/cocone/core/mesh_topology.h>
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <vector>
+
+namespace pcl {
+namespace cocone {
+namespace detail {
+
+/** The largest hole restoreInputPositions fills (vertices of its loop): a fill is
+ * O(m^3) in time and memory, and the holes left by a few crossing triangles have a
+ * dozen vertices. */
+constexpr std::size_t kMaxRestoreLoop = 64;
+
+/** What restoreInputPositions did. */
+struct RestoreRepair
+{
+  std::size_t removed_triangles = 0; ///< triangles that crossed another, or pinched
+  std::size_t filled_triangles = 0;  ///< triangles added in their holes
+};
+
+/** Makes \a triangles, a mesh chosen on smoothed positions, free of self-intersection
+ * at the positions \a points of its vertices as given: every triangle of an
+ * intersecting pair (findSelfIntersections) is removed, and so is every fan but the
+ * largest at a vertex this pinches; each hole this opens (a
+ * boundary loop through a vertex of a removed triangle, of at most kMaxRestoreLoop
+ * vertices) is filled with the triangulation of least area that crosses no triangle of
+ * the mesh (the mesher's fill). Two rounds remove and fill; a third removes what still
+ * crosses and leaves its hole open, so that no crossing is left. Deterministic. */
+RestoreRepair restoreInputPositions(const std::vector<Eigen::Vector3d>& points,
+                                    std::vector<TriangleIndices>& triangles);
+
+} // namespace detail
+} // namespace cocone
+} // namespace pcl
