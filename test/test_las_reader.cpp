@@ -225,6 +225,27 @@ TEST_F(LasReader, TruncatedFilesFail)
   expectFailure(write("v14.las", lasFile(layout, points).substr(0, 300)), "truncated");
 }
 
+TEST_F(LasReader, PointRecordsEndWhereTheRecordsAfterThemBegin)
+{
+  // LAS 1.3 may keep waveform data packets, LAS 1.4 extended VLRs, after the point
+  // records. A count larger than the records there are must not read into them: their
+  // bytes would come back as points, without a word.
+  const std::vector<LasPoint> points = somePoints(6);
+  for (const unsigned minor : {3u, 4u}) {
+    SCOPED_TRACE("LAS 1." + std::to_string(minor));
+    LasLayout layout;
+    layout.minor = minor;
+    layout.format = minor == 3 ? 1 : 6;
+    layout.trailing_body = 4 * lasMinimumRecordLength(layout.format);
+    expectPoints(write("trailing.las", lasFile(layout, points)), layout, points);
+    if (minor == 3)
+      layout.legacy_count = points.size() + 1;
+    else
+      layout.count64 = points.size() + 1;
+    expectFailure(write("overlap.las", lasFile(layout, points)), "truncated");
+  }
+}
+
 TEST_F(LasReader, BadHeadersFail)
 {
   const std::vector<LasPoint> points = somePoints(3);
