@@ -314,7 +314,12 @@ TEST_F(LasReader, CoordinatesBeyondFloatBecomeInfiniteNotUndefined)
   std::vector<LasPoint> points = somePoints(3);
   points[1].x = std::numeric_limits<std::int32_t>::max();
   LasLayout layout;
-  layout.scale = {1e300, 1, 1};
+  // X * scale is finite as a double (about 2e39) but beyond float's range, so that the
+  // reader's conversion to float is what is tested (a scale of 1e300 overflowed in the
+  // double product already, and an infinite double converts to float without harm).
+  layout.scale = {1e30, 1, 1};
+  ASSERT_TRUE(std::isfinite(points[1].x * layout.scale[0]));
+  ASSERT_GT(points[1].x * layout.scale[0], std::numeric_limits<float>::max());
   pcl::PCLPointCloud2 cloud;
   std::string error;
   ASSERT_TRUE(pcl::cocone::loadPointSamples(write("far.las", lasFile(layout, points)),
