@@ -174,18 +174,21 @@ main(int argc, char** argv)
       "1.5 2.5 3.5 7\n4 5 6 8\n");
 
   // LAS: every version's header, old and new point formats, a VLR, longer records, the
-  // 64-bit count of 1.4 (written by the tests' own writer).
+  // 64-bit count of 1.4, a record after the points (1.3's waveform data, 1.4's extended
+  // VLR) (written by the tests' own writer).
   namespace las = pcl::cocone::test;
   const std::vector<las::LasPoint> points = {
       {100, -200, 300, 7, 2}, {-5, 0, 12345, 65535, 31}, {0, 0, 0, 0, 0}};
   const auto lasSeed = [&](const char* name, unsigned minor, unsigned format,
-                           std::size_t vlr_body, std::size_t extra_bytes) {
+                           std::size_t vlr_body, std::size_t extra_bytes,
+                           std::size_t trailing_body = 0) {
     las::LasLayout layout;
     layout.minor = minor;
     layout.format = format;
     layout.vlr_body = vlr_body;
     layout.record_length = las::lasMinimumRecordLength(format) + extra_bytes;
     layout.offset = {1000.5, -2000.25, 3};
+    layout.trailing_body = trailing_body;
     put("las", name, las::lasFile(layout, points));
   };
   lasSeed("v12_format1.las", 2, 1, 0, 0);
@@ -193,5 +196,7 @@ main(int argc, char** argv)
   lasSeed("v13_format4.las", 3, 4, 0, 0);
   lasSeed("v14_format6.las", 4, 6, 26, 0);
   lasSeed("v14_format10.las", 4, 10, 0, 5);
+  lasSeed("v13_format1_waveform.las", 3, 1, 0, 0, 24);
+  lasSeed("v14_format7_evlr.las", 4, 7, 0, 0, 24);
   return 0;
 }

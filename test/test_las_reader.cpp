@@ -225,6 +225,27 @@ TEST_F(LasReader, TruncatedFilesFail)
   expectFailure(write("v14.las", lasFile(layout, points).substr(0, 300)), "truncated");
 }
 
+TEST_F(LasReader, PointRecordsEndWhereTheRecordsAfterThemBegin)
+{
+  // LAS 1.3 may keep waveform data packets, LAS 1.4 extended VLRs, after the point
+  // records. A count larger than the records there are must not read into them: their
+  // bytes would come back as points, without a word.
+  const std::vector<LasPoint> points = somePoints(6);
+  for (const unsigned minor : {3u, 4u}) {
+    SCOPED_TRACE("LAS 1." + std::to_string(minor));
+    LasLayout layout;
+    layout.minor = minor;
+    layout.format = minor == 3 ? 1 : 6;
+    layout.trailing_body = 4 * lasMinimumRecordLength(layout.format);
+    expectPoints(write("trailing.las", lasFile(layout, points)), layout, points);
+    if (minor == 3)
+      layout.legacy_count = points.size() + 1;
+    else
+      layout.count64 = points.size() + 1;
+    expectFailure(write("overlap.las", lasFile(layout, points)), "truncated");
+  }
+}
+
 TEST_F(LasReader, BadHeadersFail)
 {
   const std::vector<LasPoint> points = somePoints(3);
@@ -293,7 +314,12 @@ TEST_F(LasReader, CoordinatesBeyondFloatBecomeInfiniteNotUndefined)
   std::vector<LasPoint> points = somePoints(3);
   points[1].x = std::numeric_limits<std::int32_t>::max();
   LasLayout layout;
-  layout.scale = {1e300, 1, 1};
+  // X * scale is finite as a double (about 2e39) but beyond float's range, so that the
+  // reader's conversion to float is what is tested (a scale of 1e300 overflowed in the
+  // double product already, and an infinite double converts to float without harm).
+  layout.scale = {1e30, 1, 1};
+  ASSERT_TRUE(std::isfinite(points[1].x * layout.scale[0]));
+  ASSERT_GT(points[1].x * layout.scale[0], std::numeric_limits<float>::max());
   pcl::PCLPointCloud2 cloud;
   std::string error;
   ASSERT_TRUE(pcl::cocone::loadPointSamples(write("far.las", lasFile(layout, points)),

@@ -18,7 +18,8 @@
 // Every number of the header is checked against the file's size before anything is
 // allocated: the header size against its version's, the offset to the point data, the
 // record length against its format's minimum, and the point count (the legacy 32-bit
-// count, or in LAS 1.4 the 64-bit one) against the bytes after the offset.
+// count, or in LAS 1.4 the 64-bit one) against the bytes between the offset and the
+// end of the file or the first record after the points (waveform data, extended VLR).
 #include "readers.h"
 
 #include "cloud_layout.h"
@@ -34,6 +35,7 @@ namespace io_internal {
 namespace {
 
 // Offsets of the public header block (the same in every version; 1.3 and 1.4 append).
+constexpr std::size_t kGlobalEncoding = 6;
 constexpr std::size_t kVersionMajor = 24;
 constexpr std::size_t kVersionMinor = 25;
 constexpr std::size_t kHeaderSize = 94;
@@ -41,9 +43,12 @@ constexpr std::size_t kOffsetToPoints = 96;
 constexpr std::size_t kPointFormat = 104;
 constexpr std::size_t kRecordLength = 105;
 constexpr std::size_t kLegacyPointCount = 107;
-constexpr std::size_t kScale = 131;        // x, y, z: three doubles
-constexpr std::size_t kOffset = 155;       // x, y, z: three doubles
-constexpr std::size_t kPointCount64 = 247; // LAS 1.4
+constexpr std::size_t kScale = 131;          // x, y, z: three doubles
+constexpr std::size_t kOffset = 155;         // x, y, z: three doubles
+constexpr std::size_t kWaveformStart = 227;  // LAS 1.3
+constexpr std::size_t kFirstEvlrStart = 235; // LAS 1.4
+constexpr std::size_t kEvlrCount = 243;      // LAS 1.4
+constexpr std::size_t kPointCount64 = 247;   // LAS 1.4
 
 /** The header's size in each version: 227 bytes up to 1.2, 235 in 1.3 (the waveform
  * data's start), 375 in 1.4 (extended records and 64-bit counts). */
@@ -139,11 +144,27 @@ readLas(const Source& source, std::string_view text, pcl::PCLPointCloud2& cloud)
   }
   if (points == 0)
     source.fail("no points (the LAS header's point count is 0)");
-  const std::size_t available = (size - offset_to_points) / record_length;
+  // The point records end where a record after them begins: LAS 1.3's waveform data
+  // packets (when the global encoding says they are in the file) or LAS 1.4's first
+  // extended VLR. A start before the point data or beyond the file's end locates
+  // nothing that could be read as points, and is left alone.
+  std::size_t points_end = size;
+  const auto endPointsAt = [&](std::uint64_t start) {
+    if (start >= offset_to_points && start < points_end)
+      points_end = static_cast<std::size_t>(start);
+  };
+  if (minor >= 3 && (little<std::uint16_t>(bytes + kGlobalEncoding) & 2u))
+    endPointsAt(little<std::uint64_t>(bytes + kWaveformStart));
+  if (minor >= 4 && little<std::uint32_t>(bytes + kEvlrCount) > 0)
+    endPointsAt(little<std::uint64_t>(bytes + kFirstEvlrStart));
+  const std::size_t available = (points_end - offset_to_points) / record_length;
   if (points > available)
     source.fail("truncated: the LAS header declares " + std::to_string(points) +
                 " points of " + std::to_string(record_length) +
-                " bytes, the file holds " + std::to_string(available));
+                " bytes, the file holds " + std::to_string(available) +
+                (points_end < size ? " before the records that follow them at byte " +
+                                         std::to_string(points_end)
+                                   : std::string()));
 
   double scale[3];
   double offset[3];

@@ -41,6 +41,10 @@ struct LasLayout
   std::optional<std::uint64_t> count64;      ///< LAS 1.4; default: the points' number
   std::optional<std::size_t> header_size;    ///< default: the version's
   std::optional<std::uint32_t> offset_to_points; ///< default: after header and VLR
+  /** Bytes of the body of one record after the point data; 0: none. In LAS 1.3 it is
+   * the waveform data packet record (global encoding bit 1, its start at byte 227), in
+   * 1.4 an extended VLR (its start at byte 235, the count of them at 243). */
+  std::size_t trailing_body = 0;
 };
 
 /** The shortest record of formats 0 to 10. */
@@ -129,6 +133,22 @@ lasFile(const LasLayout& layout, const std::vector<LasPoint>& points)
     else // the upper three bits are the synthetic, key-point and withheld flags
       record[15] = static_cast<char>(0xe0u | (p.classification & 0x1fu));
     out += record;
+  }
+
+  if (layout.trailing_body > 0 && layout.minor >= 3) {
+    const std::uint64_t start = out.size();
+    std::string trailing(60 + layout.trailing_body, '\x3c');
+    putLittle<std::uint16_t>(trailing, 0, 0);
+    putLittle<std::uint64_t>(trailing, 20, layout.trailing_body);
+    out += trailing;
+    if (layout.minor == 3) {
+      putLittle<std::uint16_t>(out, 6, 2); // waveform data packets internal
+      putLittle<std::uint64_t>(out, 227, start);
+    }
+    else {
+      putLittle<std::uint64_t>(out, 235, start);
+      putLittle<std::uint32_t>(out, 243, 1);
+    }
   }
   return out;
 }
