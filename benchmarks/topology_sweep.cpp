@@ -7,7 +7,8 @@
 // points (docs/topology.md). Not run by the tests; single-threaded by default.
 //
 //   pcl_cocone_topology_sweep [-sizes 10000,100000] [-seeds 1,2] [-shapes torus,cube]
-//                             [-ramp] [-threads N] [-intersections]
+//                             [-ramp] [-threads N] [-intersections] [-verbose]
+//   pcl_cocone_topology_sweep -file cloud.ply [-verbose]   (one data file)
 #include "support/shapes.h"
 
 #include <pcl/cocone/core/mesh_geometry.h>
@@ -15,11 +16,17 @@
 #include <pcl/cocone/core/reconstruction.h>
 #include <pcl/cocone/core/voronoi_cocone.h>
 
+#include <pcl/cocone/io/point_io.h>
+#include <pcl/common/io.h>
+#include <pcl/console/print.h>
+#include <pcl/point_types.h>
+
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -122,6 +129,43 @@ loopsOnRim(const shapes::SampledShape& shape,
   return on_rim;
 }
 
+/** Reconstructs the points of a file (any format the tools read) and prints its
+ * topology: with -verbose, the evidence of every hole decision on a real scan. */
+int
+reconstructFile(const std::string& path, unsigned threads)
+{
+  pcl::PCLPointCloud2 blob;
+  std::string why;
+  if (!loadPointSamples(path, blob, &why)) {
+    std::fprintf(stderr, "%s: %s\n", path.c_str(), why.c_str());
+    return 1;
+  }
+  pcl::PointCloud<pcl::PointXYZ> xyz;
+  pcl::fromPCLPointCloud2(blob, xyz);
+  std::vector<Eigen::Vector3d> points;
+  for (const pcl::PointXYZ& p : xyz)
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))
+      points.emplace_back(p.x, p.y, p.z);
+  VoronoiCocone voronoi;
+  voronoi.setNumberOfThreads(threads);
+  std::vector<TriangleIndices> triangles;
+  ReconstructionReport report;
+  if (voronoi.compute(points) != Status::ok ||
+      reconstructSurface(voronoi, ReconstructionParameters(), triangles, report) !=
+          Status::ok) {
+    std::fprintf(stderr, "%s: the reconstruction failed\n", path.c_str());
+    return 1;
+  }
+  const MeshTopology topology = analyzeTriangleMesh(triangles);
+  std::printf("%s: %zu of %zu samples flagged, %zu loops, closed %s, genus %ld, %zu of "
+              "%zu samples used\n",
+              path.c_str(), report.distinct_boundary_samples, report.distinct_samples,
+              topology.boundary_loops.size(), topology.isClosed() ? "yes" : "no",
+              topology.genus(), points.size() - report.unused_samples.size(),
+              points.size());
+  return 0;
+}
+
 } // namespace
 
 int
@@ -131,6 +175,7 @@ main(int argc, char** argv)
   std::vector<std::uint32_t> seeds = {1};
   std::vector<shapes::Shape> chosen = shapes::allShapes();
   bool ramp = false, intersections = false;
+  std::string file;
   unsigned threads = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -158,14 +203,21 @@ main(int argc, char** argv)
       ramp = true;
     else if (arg == "-intersections")
       intersections = true;
+    else if (arg == "-verbose") // the mesher's hole decisions, on stderr
+      pcl::console::setVerbosityLevel(pcl::console::L_VERBOSE);
+    else if (arg == "-file" && has_value)
+      file = argv[++i];
     else {
       std::fprintf(stderr,
                    "usage: %s [-sizes n,n] [-seeds s,s] [-shapes a,b] [-ramp] "
-                   "[-threads N] [-intersections]\n",
+                   "[-threads N] [-intersections] [-verbose] [-file path]\n",
                    argv[0]);
       return 2;
     }
   }
+
+  if (!file.empty())
+    return reconstructFile(file, threads);
 
   std::printf(
       "| shape | n | seed | loops | true | spurious | true lost | closed | genus "

@@ -74,6 +74,55 @@ isTrueBoundary(double area, double perimeter, double spacing,
   return perimeter > 0 && 2 * area / perimeter > true_boundary_ratio * spacing;
 }
 
+RimFlags
+HoleRule::rimFlags(const std::vector<SampleIndex>& rim, double spacing) const
+{
+  std::vector<SampleIndex> samples(rim);
+  std::sort(samples.begin(), samples.end());
+  samples.erase(std::unique(samples.begin(), samples.end()), samples.end());
+  RimFlags flags;
+  flags.rim = samples.size();
+  std::vector<SampleIndex> counted;
+  const double apart = kDistinctFlagDistance * spacing;
+  for (const SampleIndex v : samples) {
+    if (!boundary_[v])
+      continue;
+    ++flags.flagged;
+    if (std::none_of(counted.begin(), counted.end(), [&](SampleIndex w) {
+          return (points_[v] - points_[w]).squaredNorm() <= apart * apart;
+        }))
+      counted.push_back(v);
+  }
+  flags.distinct = counted.size();
+  return flags;
+}
+
+// The rule, and why each part is there (docs/topology.md has the measurements).
+// (a) Size alone (twice the area over the perimeter against true_boundary_ratio local
+//     spacings) separates true holes from the gaps of blue-noise samples, whose widest
+//     empty disc is about 1.5 spacings. A random (Poisson) sample has no such bound:
+//     its widest gap grows like sqrt(log n) spacings, so the number of gaps above any
+//     fixed size grows with n (1M random points: loops on 8 shapes of 8).
+// (b) BOUNDARY flags a sample whose Voronoi cell is not long and thin along the
+//     normal: along a true rim that is every rim sample but for the few whose cells
+//     the completion misses, along a sampling gap only the odd sample whose cell the
+//     gap widens. The share of flagged rim samples is scale free: it depends on the
+//     local shape of the sample around the rim, not on n.
+// (c) A share alone is noisy on short rims: a gap of 5 rim samples with one flag has
+//     a share of 0.2. Three distinct flags make a rim at least a triangle's worth of
+//     evidence, which no isolated gap of a random sample reached in our sweeps.
+bool
+HoleRule::isTrueBoundary(double area, double perimeter, double spacing,
+                         const std::vector<SampleIndex>& rim) const
+{
+  if (!detail::isTrueBoundary(area, perimeter, spacing, ratio_))
+    return false;
+  const RimFlags flags = rimFlags(rim, spacing);
+  return flags.distinct >= kTrueRimDistinctFlags &&
+         static_cast<double>(flags.flagged) >=
+             kTrueRimFlagShare * static_cast<double>(flags.rim);
+}
+
 } // namespace detail
 } // namespace cocone
 } // namespace pcl

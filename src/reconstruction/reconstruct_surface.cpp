@@ -63,8 +63,8 @@ flagBoundarySamples(const VoronoiCocone& voronoi,
   if (report.tooSparseForBoundaryDetection())
     PCL_WARN("[pcl::cocone::reconstructSurface] %zu of %zu distinct samples are "
              "boundary samples: the cloud is too sparse for boundary detection at rho "
-             "%g, and most of the surface will stay uncovered; a larger rho or no "
-             "boundary detection fits it better.\n",
+             "%g, so it is reconstructed without it (every hole is closed where it "
+             "can be); a larger rho fits it better if it has true boundaries.\n",
              report.distinct_boundary_samples, report.distinct_samples,
              parameters.boundary.ratio_bound);
 }
@@ -90,15 +90,28 @@ runStages(const VoronoiCocone& voronoi, const ReconstructionParameters& paramete
   ReconstructionReport::Timings& timings = report.timings;
   const unsigned threads = voronoi.getNumberOfThreads();
   const double ratio = parameters.true_boundary_ratio;
-  const std::vector<std::uint8_t>& boundary = report.boundary_samples;
   detail::MeshState mesh(voronoi.centeredPoints());
   flagBoundarySamples(voronoi, parameters, report);
   lap(timings.boundary, "boundary samples");
   progress.report(0.05);
 
+  // The sparse fallback (see tooSparseForBoundaryDetection): when most samples are
+  // flagged, the flags say that the cloud is sparse, not where its rims are. Every
+  // sample then votes, and no hole counts as a true boundary; candidates larger than a
+  // sampled surface's triangles are dropped instead, so that the cocones of a thin,
+  // sparse part do not bridge it.
+  const bool sparse = report.tooSparseForBoundaryDetection();
+  const std::vector<std::uint8_t> no_flags(sparse ? voronoi.size() : 0, 0);
+  const std::vector<std::uint8_t>& boundary =
+      sparse ? no_flags : report.boundary_samples;
+  const detail::HoleRule rule(mesh.points(), boundary, ratio);
+
   const std::vector<double> spacing = detail::measureLocalSpacing(voronoi);
   report.candidate_triangles = detail::collectCandidates(voronoi, boundary, mesh);
-  report.lid_triangles = detail::removeLids(mesh, spacing, boundary, ratio, threads);
+  if (sparse)
+    report.candidate_triangles -=
+        detail::rejectLargeCandidates(mesh, spacing, detail::kSparseCandidateRadius);
+  report.lid_triangles = detail::removeLids(mesh, spacing, rule, threads);
   lap(timings.candidates, "candidates and lids");
   progress.report(0.2);
 
@@ -118,8 +131,8 @@ runStages(const VoronoiCocone& voronoi, const ReconstructionParameters& paramete
   // its bounding box since (a loop that stayed open would stay open again): removing
   // crossings and inserting samples change the mesh, and open holes, and so does
   // growing a hole over the triangles in the way of its fill (they need not touch it).
-  detail::PolygonFiller filler(mesh, pinches, ratio);
-  detail::Stitcher stitcher(mesh, voronoi, spacing, pruner, walker, filler, ratio);
+  detail::PolygonFiller filler(mesh, pinches, rule);
+  detail::Stitcher stitcher(mesh, voronoi, spacing, pruner, walker, filler, rule);
   if (parameters.stitch_holes)
     stitcher.stitchLoops();
   mesh.logChanges(true);
