@@ -7,7 +7,8 @@
 // points (docs/topology.md). Not run by the tests; single-threaded by default.
 //
 //   pcl_cocone_topology_sweep [-sizes 10000,100000] [-seeds 1,2] [-shapes torus,cube]
-//                             [-ramp] [-threads N] [-intersections] [-verbose]
+//                             [-ramp] [-threads N] [-intersections] [-verbose] [-repeat
+//                             N]
 //   pcl_cocone_topology_sweep -file cloud.ply [-verbose]   (one data file)
 #include "support/shapes.h"
 
@@ -25,6 +26,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -177,6 +179,7 @@ main(int argc, char** argv)
   bool ramp = false, intersections = false;
   std::string file;
   unsigned threads = 1;
+  int repeat = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
@@ -199,6 +202,8 @@ main(int argc, char** argv)
     }
     else if (arg == "-threads" && has_value)
       threads = static_cast<unsigned>(std::stoul(argv[++i]));
+    else if (arg == "-repeat" && has_value)
+      repeat = std::max(1, std::stoi(argv[++i]));
     else if (arg == "-ramp")
       ramp = true;
     else if (arg == "-intersections")
@@ -208,10 +213,11 @@ main(int argc, char** argv)
     else if (arg == "-file" && has_value)
       file = argv[++i];
     else {
-      std::fprintf(stderr,
-                   "usage: %s [-sizes n,n] [-seeds s,s] [-shapes a,b] [-ramp] "
-                   "[-threads N] [-intersections] [-verbose] [-file path]\n",
-                   argv[0]);
+      std::fprintf(
+          stderr,
+          "usage: %s [-sizes n,n] [-seeds s,s] [-shapes a,b] [-ramp] "
+          "[-threads N] [-intersections] [-verbose] [-repeat N] [-file path]\n",
+          argv[0]);
       return 2;
     }
   }
@@ -230,25 +236,32 @@ main(int argc, char** argv)
     for (const shapes::Shape which : chosen)
       for (const std::uint32_t seed : seeds) {
         const shapes::SampledShape shape = shapes::sampleRandom(which, n, seed, ramp);
-        const double t_delaunay = timeDelaunay(shape.points);
-
-        // The whole reconstruction, as the classes run it: spatial order, diagram,
-        // mesher.
-        const Clock::time_point start = Clock::now();
-        const std::vector<SampleIndex> order = spatialOrder(shape.points, threads);
-        std::vector<Eigen::Vector3d> ordered(order.size());
-        for (std::size_t k = 0; k < order.size(); ++k)
-          ordered[k] = shape.points[order[k]];
-        VoronoiCocone voronoi;
-        voronoi.setNumberOfThreads(threads);
+        // The bare Delaunay and the whole reconstruction (as the classes run it:
+        // spatial order, diagram, mesher) take turns, -repeat times, and the best time
+        // of each counts: a burst of load on the shared machine hits both alike.
+        double t_delaunay = 0, t_total = 0;
+        std::vector<Eigen::Vector3d> ordered;
         std::vector<TriangleIndices> triangles;
         ReconstructionReport report;
         std::string message;
-        Status status = voronoi.compute(ordered);
-        if (status == Status::ok)
-          status = reconstructSurface(voronoi, ReconstructionParameters(), triangles,
-                                      report, nullptr, &message);
-        const double t_total = secondsSince(start);
+        Status status = Status::ok;
+        for (int round = 0; round < repeat && status == Status::ok; ++round) {
+          const double dt = timeDelaunay(shape.points);
+          t_delaunay = round == 0 ? dt : std::min(t_delaunay, dt);
+          const Clock::time_point start = Clock::now();
+          const std::vector<SampleIndex> order = spatialOrder(shape.points, threads);
+          ordered.assign(order.size(), Eigen::Vector3d::Zero());
+          for (std::size_t k = 0; k < order.size(); ++k)
+            ordered[k] = shape.points[order[k]];
+          VoronoiCocone voronoi;
+          voronoi.setNumberOfThreads(threads);
+          status = voronoi.compute(ordered);
+          if (status == Status::ok)
+            status = reconstructSurface(voronoi, ReconstructionParameters(), triangles,
+                                        report, nullptr, &message);
+          const double total = secondsSince(start);
+          t_total = round == 0 ? total : std::min(t_total, total);
+        }
         if (status != Status::ok) {
           std::printf("| %s | %zu | %u | failed: %s |\n", shapeName(which), n, seed,
                       message.c_str());

@@ -616,7 +616,7 @@ struct LiddedGrid
 
 // The lid is 3 spacings in size (twice its area over its perimeter): a true boundary
 // at ratio 2, not at ratio 4. It goes only when BOUNDARY flags its rim: at least a
-// fifth of its rim samples, at 3 distinct places (HoleRule).
+// fifth of its rim samples, at 2 distinct places (HoleRule).
 TEST(Candidates, LidsOverTrueHolesWithFlaggedRimsAreRemoved)
 {
   const LiddedGrid grid;
@@ -641,12 +641,11 @@ TEST(Candidates, LidsOverTrueHolesWithFlaggedRimsAreRemoved)
   EXPECT_EQ(lid_states(grid.removeLids(boundary, 2, removed)), kept);
   EXPECT_EQ(removed, 0u);
 
-  boundary[LiddedGrid::at(2, 2)] = 1; // two corners of the lid's rim: too few places
-  boundary[LiddedGrid::at(8, 2)] = 1;
+  boundary[LiddedGrid::at(2, 2)] = 1; // one corner of the lid's rim: one place
   EXPECT_EQ(lid_states(grid.removeLids(boundary, 2, removed)), kept);
   EXPECT_EQ(removed, 0u);
 
-  boundary[LiddedGrid::at(8, 8)] = 1; // three: a flagged rim
+  boundary[LiddedGrid::at(8, 8)] = 1; // two: a flagged rim
   EXPECT_EQ(lid_states(grid.removeLids(boundary, 2, removed)), rejected);
   EXPECT_EQ(removed, 2u);
   EXPECT_EQ(lid_states(grid.removeLids(boundary, 4, removed)), kept); // a small hole
@@ -655,8 +654,8 @@ TEST(Candidates, LidsOverTrueHolesWithFlaggedRimsAreRemoved)
 
 // The rule's evidence along a rim: repeats count once, and flags closer than a quarter
 // spacing (a close pair of a random sample) are one place. A true boundary needs the
-// size, a fifth of its rim flagged, and 3 places.
-TEST(HoleRule, NeedsSizeFlaggedShareAndThreePlaces)
+// size, a fifth of its rim flagged, and 2 places.
+TEST(HoleRule, NeedsSizeFlaggedShareAndTwoPlaces)
 {
   Points points = {{0, 0, 0}, {0.1, 0, 0}};
   for (int k = 1; k < 19; ++k)
@@ -669,23 +668,22 @@ TEST(HoleRule, NeedsSizeFlaggedShareAndThreePlaces)
   const double area = 3.14159 * 16, perimeter = 2 * 3.14159 * 4;
 
   std::vector<std::uint8_t> flags(points.size(), 0);
-  flags[0] = flags[1] = flags[2] = 1;
+  flags[0] = flags[1] = 1;
   const HoleRule rule(points, flags, 2);
   std::vector<SampleIndex> repeated = short_rim;
   repeated.push_back(0);
   const pcl::cocone::detail::RimFlags counted = rule.rimFlags(repeated, 1);
   EXPECT_EQ(counted.rim, 10u);
-  EXPECT_EQ(counted.flagged, 3u);
-  EXPECT_EQ(counted.distinct, 2u); // 0 and 1 are 0.1 apart
-  EXPECT_FALSE(rule.isTrueBoundary(area, perimeter, 1, short_rim)); // 2 places
+  EXPECT_EQ(counted.flagged, 2u);
+  EXPECT_EQ(counted.distinct, 1u); // 0 and 1 are 0.1 apart
+  EXPECT_FALSE(rule.isTrueBoundary(area, perimeter, 1, short_rim)); // one place
 
-  flags[6] = 1; // 4 of 10 flagged at 3 places
+  flags[6] = 1; // 3 of 10 flagged at 2 places
   EXPECT_TRUE(rule.isTrueBoundary(area, perimeter, 1, short_rim));
   EXPECT_FALSE(rule.isTrueBoundary(area, perimeter, 3, short_rim)); // too small
-  EXPECT_TRUE(rule.isTrueBoundary(area, perimeter, 1, rim));        // 4 of 20: a fifth
-  flags[1] = 0;                                                     // 3 of 20: less
-  EXPECT_FALSE(rule.isTrueBoundary(area, perimeter, 1, rim));
-  EXPECT_TRUE(rule.isTrueBoundary(area, perimeter, 1, short_rim)); // 3 of 10
+  EXPECT_FALSE(rule.isTrueBoundary(area, perimeter, 1, rim)); // 3 of 20: below a fifth
+  flags[12] = 1;                                              // 4 of 20: a fifth
+  EXPECT_TRUE(rule.isTrueBoundary(area, perimeter, 1, rim));
 }
 
 // --- pruning --------------------------------------------------------------------
