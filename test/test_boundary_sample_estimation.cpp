@@ -438,6 +438,28 @@ INSTANTIATE_TEST_SUITE_P(
                     ShapeCase{"open_cylinder", shapes::sampleOpenCylinder}),
     caseName);
 
+// Random samples (issue 22): the flags stay on the rim, at 6k (three seeds; a 6k random
+// hemisphere with a coarser jitter once gave 94% of its flags near the rim) and at 30k,
+// on every open shape. Measured: precision 0.968 to 0.996, coverage 1.
+TEST(BoundarySampleEstimation, RandomSamplesFlagTheRimOnly)
+{
+  using shapes::Shape;
+  for (const Shape which : {Shape::hemisphere, Shape::monkey_saddle,
+                            Shape::open_cylinder, Shape::half_cylinder})
+    for (const auto& [n, seed] : {std::pair<std::size_t, std::uint32_t>{6000, 1},
+                                  {6000, 2},
+                                  {6000, 3},
+                                  {30000, 1}}) {
+      const SampledShape shape = shapes::sampleRandom(which, n, seed);
+      const BoundaryRun run = runBoundary(shape.points);
+      ASSERT_EQ(run.rows, shape.points.size());
+      const RimMetrics m = measureRim(shape, run.flags);
+      printMetrics("random " + shape.name + " seed " + std::to_string(seed), m);
+      EXPECT_GE(m.precision, 0.95) << shape.name << " " << n << " seed " << seed;
+      EXPECT_GE(m.coverage, 0.95) << shape.name << " " << n << " seed " << seed;
+    }
+}
+
 // --- the cube: sharp edges are undersampling too ----------------------------------
 
 TEST(BoundarySampleEstimation, CubeFlagsFollowItsEdges)

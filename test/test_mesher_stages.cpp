@@ -46,6 +46,7 @@ using pcl::cocone::detail::boxesApart;
 using pcl::cocone::detail::BoxGrid;
 using pcl::cocone::detail::collectCandidates;
 using pcl::cocone::detail::fillLoopByLeastArea;
+using pcl::cocone::detail::HoleRule;
 using pcl::cocone::detail::kCandidate;
 using pcl::cocone::detail::kCoconeGroup;
 using pcl::cocone::detail::kPolygonGroup;
@@ -604,8 +605,8 @@ struct LiddedGrid
     mesh.closeGroup();
     mesh.rebuildIncidence();
     const std::vector<double> spacing(points.size(), 1.0);
-    removed = pcl::cocone::detail::removeLids(mesh, spacing, boundary,
-                                              true_boundary_ratio, 1);
+    const HoleRule rule(points, boundary, true_boundary_ratio);
+    removed = pcl::cocone::detail::removeLids(mesh, spacing, rule, 1);
     std::vector<std::uint8_t> states;
     for (std::uint32_t t = 0; t < mesh.poolSize(); ++t)
       states.push_back(mesh.state(t));
@@ -614,9 +615,9 @@ struct LiddedGrid
 };
 
 // The lid is 3 spacings in size (twice its area over its perimeter): a true boundary
-// at ratio 2, not at ratio 4. It goes only when a boundary sample is on it or shares a
-// candidate with one of its vertices.
-TEST(Candidates, LidsOverTrueHolesNearBoundarySamplesAreRemoved)
+// at ratio 2, not at ratio 4. It goes only when BOUNDARY flags its rim: at least a
+// fifth of its rim samples, at 2 distinct places (HoleRule).
+TEST(Candidates, LidsOverTrueHolesWithFlaggedRimsAreRemoved)
 {
   const LiddedGrid grid;
   const std::size_t lid_first = grid.triangles.size() - 2;
@@ -637,10 +638,52 @@ TEST(Candidates, LidsOverTrueHolesNearBoundarySamplesAreRemoved)
   EXPECT_EQ(removed, 0u);
 
   boundary[LiddedGrid::at(1, 1)] = 1; // shares a grid triangle with the lid's corner
+  EXPECT_EQ(lid_states(grid.removeLids(boundary, 2, removed)), kept);
+  EXPECT_EQ(removed, 0u);
+
+  boundary[LiddedGrid::at(2, 2)] = 1; // one corner of the lid's rim: one place
+  EXPECT_EQ(lid_states(grid.removeLids(boundary, 2, removed)), kept);
+  EXPECT_EQ(removed, 0u);
+
+  boundary[LiddedGrid::at(8, 8)] = 1; // two: a flagged rim
   EXPECT_EQ(lid_states(grid.removeLids(boundary, 2, removed)), rejected);
   EXPECT_EQ(removed, 2u);
   EXPECT_EQ(lid_states(grid.removeLids(boundary, 4, removed)), kept); // a small hole
   EXPECT_EQ(removed, 0u);
+}
+
+// The rule's evidence along a rim: repeats count once, and flags closer than a quarter
+// spacing (a close pair of a random sample) are one place. A true boundary needs the
+// size, a fifth of its rim flagged, and 2 places.
+TEST(HoleRule, NeedsSizeFlaggedShareAndTwoPlaces)
+{
+  Points points = {{0, 0, 0}, {0.1, 0, 0}};
+  for (int k = 1; k < 19; ++k)
+    points.emplace_back(k, 0, 0);
+  std::vector<SampleIndex> rim(20);
+  for (SampleIndex v = 0; v < 20; ++v)
+    rim[v] = v;
+  const std::vector<SampleIndex> short_rim(rim.begin(), rim.begin() + 10);
+  // A disc of radius 4: size 4 spacings when the samples are 1 apart, 1.3 when 3.
+  const double area = 3.14159 * 16, perimeter = 2 * 3.14159 * 4;
+
+  std::vector<std::uint8_t> flags(points.size(), 0);
+  flags[0] = flags[1] = 1;
+  const HoleRule rule(points, flags, 2);
+  std::vector<SampleIndex> repeated = short_rim;
+  repeated.push_back(0);
+  const pcl::cocone::detail::RimFlags counted = rule.rimFlags(repeated, 1);
+  EXPECT_EQ(counted.rim, 10u);
+  EXPECT_EQ(counted.flagged, 2u);
+  EXPECT_EQ(counted.distinct, 1u); // 0 and 1 are 0.1 apart
+  EXPECT_FALSE(rule.isTrueBoundary(area, perimeter, 1, short_rim)); // one place
+
+  flags[6] = 1; // 3 of 10 flagged at 2 places
+  EXPECT_TRUE(rule.isTrueBoundary(area, perimeter, 1, short_rim));
+  EXPECT_FALSE(rule.isTrueBoundary(area, perimeter, 3, short_rim)); // too small
+  EXPECT_FALSE(rule.isTrueBoundary(area, perimeter, 1, rim)); // 3 of 20: below a fifth
+  flags[12] = 1;                                              // 4 of 20: a fifth
+  EXPECT_TRUE(rule.isTrueBoundary(area, perimeter, 1, rim));
 }
 
 // --- pruning --------------------------------------------------------------------
@@ -1022,7 +1065,9 @@ TEST(PolygonFill, ClosesTheHoleOfARemovedFan)
   ASSERT_GE(loop.size(), 4u);
   const std::size_t before = meshTriangles(mesh).size();
   PinchResolver pinches(mesh);
-  PolygonFiller filler(mesh, pinches, 2);
+  const std::vector<std::uint8_t> flags(points.size(), 1);
+  const HoleRule rule(points, flags, 2);
+  PolygonFiller filler(mesh, pinches, rule);
   const PolygonFill fill = filler.fill(loop, 1);
   EXPECT_TRUE(fill.closed);
   EXPECT_EQ(fill.added, loop.size() - 2);
@@ -1044,14 +1089,17 @@ TEST(PolygonFill, TrueBoundariesStayOpen)
   OctahedronWithHole shape;
   std::vector<SampleIndex> loop = shape.mesh.traceLoops().at(0);
   PinchResolver pinches(shape.mesh);
-  // The missing face is 0.41 in size (twice its area over its perimeter): a true
-  // boundary at ratio 2 when the samples are 0.1 apart, a hole when they are 1 apart.
-  const PolygonFill open = PolygonFiller(shape.mesh, pinches, 2).fill(loop, 0.1);
+  // The missing face is 0.41 in size (twice its area over its perimeter): with its
+  // three corners flagged, a true boundary at ratio 2 when the samples are 0.1 apart,
+  // a hole when they are 1 apart.
+  const std::vector<std::uint8_t> flags(shape.points.size(), 1);
+  const HoleRule rule(shape.points, flags, 2);
+  const PolygonFill open = PolygonFiller(shape.mesh, pinches, rule).fill(loop, 0.1);
   EXPECT_FALSE(open.closed);
   EXPECT_EQ(shape.mesh.traceLoops().size(), 1u);
   EXPECT_EQ(shape.mesh.poolSize(), 8u); // nothing added
 
-  const PolygonFill closed = PolygonFiller(shape.mesh, pinches, 2).fill(loop, 1);
+  const PolygonFill closed = PolygonFiller(shape.mesh, pinches, rule).fill(loop, 1);
   EXPECT_TRUE(closed.closed);
   EXPECT_EQ(closed.added, 1u);
   EXPECT_TRUE(shape.mesh.traceLoops().empty());
@@ -1076,11 +1124,13 @@ TEST(PolygonFill, GrowsOverWhatIsInTheWayOrRestoresIt)
   std::vector<SampleIndex> loop;
   ASSERT_TRUE(shape.mesh.traceLoopFrom(0, loop));
   PinchResolver pinches(shape.mesh);
-  const PolygonFill restored = PolygonFiller(shape.mesh, pinches, 2).fill(loop, 0.1);
+  const std::vector<std::uint8_t> flags(shape.points.size(), 1);
+  const HoleRule rule(shape.points, flags, 2);
+  const PolygonFill restored = PolygonFiller(shape.mesh, pinches, rule).fill(loop, 0.1);
   EXPECT_FALSE(restored.closed);
   EXPECT_TRUE(shape.mesh.inMesh(spike_id)); // put back
 
-  const PolygonFill grown = PolygonFiller(shape.mesh, pinches, 2).fill(loop, 1);
+  const PolygonFill grown = PolygonFiller(shape.mesh, pinches, rule).fill(loop, 1);
   EXPECT_TRUE(grown.closed);
   EXPECT_EQ(grown.added, 1u);
   EXPECT_EQ(grown.removed, 1u);
@@ -1100,8 +1150,13 @@ struct Stitching
   Pruner pruner{mesh, extraction.boundary, 1};
   PinchResolver pinches{mesh};
   Walker walker{mesh, pinches, 1};
-  PolygonFiller filler{mesh, pinches, 2};
-  Stitcher stitcher{mesh, extraction.voronoi, spacing, pruner, walker, filler, 2};
+  // The hole rule sees every sample flagged, so that size alone decides: the holes
+  // below are cut out of a sphere, whose rims BOUNDARY (run before the cut) never saw.
+  const std::vector<std::uint8_t> rim_flags =
+      std::vector<std::uint8_t>(mesh.points().size(), 1);
+  HoleRule rule{mesh.points(), rim_flags, 2};
+  PolygonFiller filler{mesh, pinches, rule};
+  Stitcher stitcher{mesh, extraction.voronoi, spacing, pruner, walker, filler, rule};
 };
 
 TEST(Stitch, SmallHoleIsClosedByItsDelaunayTriangles)
@@ -1269,7 +1324,8 @@ TEST(Insertion, SampleOverAFilledHoleIsPutBack)
   ASSERT_EQ(extraction.voronoi.representative(duplicate), 5u);
   std::vector<SampleIndex> loop = openFanOf(mesh, v);
   PinchResolver pinches(mesh);
-  ASSERT_TRUE(PolygonFiller(mesh, pinches, 2).fill(loop, 1).closed);
+  const HoleRule rule(mesh.points(), extraction.boundary, 2);
+  ASSERT_TRUE(PolygonFiller(mesh, pinches, rule).fill(loop, 1).closed);
   ASSERT_EQ(mesh.meshDegree(v), 0u);
 
   const std::vector<double> spacing =

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The analytic test shapes: counts, determinism, points on the surface, normals,
-// blue-noise quality, areas and volumes against estimates made here independently.
+// blue-noise quality, areas and volumes against estimates made here independently;
+// the random sampler's shares of equal areas, density ramp and neighbour distances.
 #include "support/shapes.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <iostream>
 #include <random>
 
@@ -42,6 +44,7 @@ const ShapeCase kCases[] = {
     {"hemisphere", shapes::sampleHemisphere, false, 0, 1, true, true, false},
     {"monkey_saddle", shapes::sampleMonkeySaddle, false, 0, 1, true, true, false},
     {"open_cylinder", shapes::sampleOpenCylinder, false, 0, 2, true, true, false},
+    {"half_cylinder", shapes::sampleHalfCylinder, false, 0, 1, true, true, false},
     {"cube", shapes::sampleCube, true, 0, 0, true, true, false},
 };
 
@@ -526,6 +529,178 @@ TEST(ShapeFeatureSize, SphereAndTorus)
     const double to_axis = std::hypot(p.x(), p.y());
     EXPECT_NEAR(torus.local_feature_size(p), std::min(to_core, to_axis), 1e-4);
   }
+}
+
+// --- Area-uniform random samples (sampleRandom) -----------------------------------
+
+/** Whether \a count of \a n independent draws is within 5 standard deviations of the
+ * binomial mean for probability \a p. */
+::testing::AssertionResult
+binomialCountFits(std::size_t count, std::size_t n, double p)
+{
+  const double mean = p * static_cast<double>(n);
+  const double sigma = std::sqrt(mean * (1 - p));
+  if (std::abs(static_cast<double>(count) - mean) <= 5 * sigma)
+    return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure()
+         << count << " of " << n << ", expected " << mean << " +- 5 x " << sigma;
+}
+
+TEST(RandomShapes, CountsDeterminismAndPointsOnTheSurface)
+{
+  for (const shapes::Shape which : shapes::allShapes()) {
+    const SampledShape shape = shapes::sampleRandom(which, 3000, 4);
+    SCOPED_TRACE(shape.name);
+    ASSERT_EQ(shape.points.size(), 3000u);
+    ASSERT_EQ(shape.normals.size(), 3000u);
+    const SampledShape again = shapes::sampleRandom(which, 3000, 4);
+    EXPECT_EQ(again.points, shape.points);
+    EXPECT_NE(shapes::sampleRandom(which, 3000, 5).points, shape.points);
+    // The facts are those of the blue-noise generator.
+    const SampledShape blue = [&] {
+      switch (which) {
+      case shapes::Shape::sphere:
+        return shapes::sampleSphere(10);
+      case shapes::Shape::torus:
+        return shapes::sampleTorus(10);
+      case shapes::Shape::trefoil_knot:
+        return shapes::sampleTrefoilKnot(10);
+      case shapes::Shape::genus3:
+        return shapes::sampleGenus3(10);
+      case shapes::Shape::cube:
+        return shapes::sampleCube(10);
+      case shapes::Shape::hemisphere:
+        return shapes::sampleHemisphere(10);
+      case shapes::Shape::open_cylinder:
+        return shapes::sampleOpenCylinder(10);
+      case shapes::Shape::half_cylinder:
+        return shapes::sampleHalfCylinder(10);
+      case shapes::Shape::monkey_saddle:
+        return shapes::sampleMonkeySaddle(10);
+      }
+      return SampledShape();
+    }();
+    EXPECT_EQ(shape.name, blue.name);
+    EXPECT_EQ(shape.area, blue.area);
+    EXPECT_EQ(shape.closed, blue.closed);
+    EXPECT_EQ(shape.genus, blue.genus);
+    EXPECT_EQ(shape.boundary_loops, blue.boundary_loops);
+    // On the surface up to the jitter: 1e-5 of a diagonal below 7.
+    double worst = 0, worst_normal = 0;
+    for (std::size_t i = 0; i < shape.points.size(); ++i) {
+      worst = std::max(worst, shape.distance_to_surface(shape.points[i]));
+      worst_normal = std::max(worst_normal, std::abs(shape.normals[i].norm() - 1));
+    }
+    EXPECT_LT(worst, 1e-4);
+    EXPECT_LT(worst_normal, 1e-9);
+  }
+}
+
+// Sets of equal area get binomial shares of the points: slabs of equal height on the
+// sphere (Archimedes) and on the cylinders, the outer and inner halves of the torus
+// (their areas differ by the curvature term), the faces of the cube.
+TEST(RandomShapes, AreEqualAreasGetEqualShares)
+{
+  const std::size_t n = 100000;
+  constexpr int kSlabs = 10;
+  const SampledShape sphere = shapes::sampleRandom(shapes::Shape::sphere, n, 7);
+  std::vector<std::size_t> slab(kSlabs, 0);
+  for (const Eigen::Vector3d& p : sphere.points)
+    ++slab[std::min(kSlabs - 1, static_cast<int>((p.z() + 1) / 2 * kSlabs))];
+  for (int k = 0; k < kSlabs; ++k)
+    EXPECT_TRUE(binomialCountFits(slab[k], n, 1.0 / kSlabs)) << "sphere slab " << k;
+
+  for (const shapes::Shape which :
+       {shapes::Shape::open_cylinder, shapes::Shape::half_cylinder}) {
+    const SampledShape cylinder = shapes::sampleRandom(which, n, 8);
+    std::vector<std::size_t> by_height(kSlabs, 0), by_angle(kSlabs, 0);
+    const double sector = which == shapes::Shape::open_cylinder ? 2 * kPi : kPi;
+    for (const Eigen::Vector3d& p : cylinder.points) {
+      ++by_height[std::min(kSlabs - 1, static_cast<int>((p.z() + 1) / 2 * kSlabs))];
+      double angle = std::atan2(p.y(), p.x());
+      if (angle < 0)
+        angle += 2 * kPi;
+      ++by_angle[std::min(kSlabs - 1, static_cast<int>(angle / sector * kSlabs))];
+    }
+    for (int k = 0; k < kSlabs; ++k) {
+      EXPECT_TRUE(binomialCountFits(by_height[k], n, 1.0 / kSlabs)) << cylinder.name;
+      EXPECT_TRUE(binomialCountFits(by_angle[k], n, 1.0 / kSlabs)) << cylinder.name;
+    }
+  }
+
+  // Torus (R = 1, r = 0.35): the outer half (cos v > 0) has the share
+  // (pi R + 2 r) / (2 pi R).
+  const SampledShape torus = shapes::sampleRandom(shapes::Shape::torus, n, 9);
+  std::size_t outer = 0;
+  for (const Eigen::Vector3d& p : torus.points)
+    outer += std::hypot(p.x(), p.y()) > 1;
+  EXPECT_TRUE(binomialCountFits(outer, n, (kPi + 2 * 0.35) / (2 * kPi)));
+
+  const SampledShape cube = shapes::sampleRandom(shapes::Shape::cube, n, 10);
+  std::vector<std::size_t> faces(6, 0);
+  for (const Eigen::Vector3d& p : cube.points) {
+    int axis;
+    p.cwiseAbs().maxCoeff(&axis);
+    ++faces[2 * axis + (p[axis] > 0)];
+  }
+  for (int f = 0; f < 6; ++f)
+    EXPECT_TRUE(binomialCountFits(faces[f], n, 1.0 / 6)) << "cube face " << f;
+}
+
+// The density ramp: density 8^t along x. On the sphere every slab of x has the same
+// area, so the last tenth of the x extent holds 8^0.9 times the points of the first.
+TEST(RandomShapes, DensityRampIsEightfoldAcrossTheSurface)
+{
+  const std::size_t n = 100000;
+  const SampledShape sphere = shapes::sampleRandom(shapes::Shape::sphere, n, 11, true);
+  ASSERT_EQ(sphere.points.size(), n);
+  std::size_t first = 0, last = 0;
+  for (const Eigen::Vector3d& p : sphere.points) {
+    first += p.x() < -0.8;
+    last += p.x() > 0.8;
+  }
+  const double ratio = static_cast<double>(last) / static_cast<double>(first);
+  std::cout << "[ random   ] density ramp: last / first tenth of x = " << ratio
+            << " (expected 8^0.9 = " << std::pow(8.0, 0.9) << ")" << std::endl;
+  EXPECT_NEAR(ratio, std::pow(8.0, 0.9), 0.1 * std::pow(8.0, 0.9));
+  // The share of the first tenth: int_0^0.1 8^t dt / int_0^1 8^t dt.
+  const double share = (std::pow(8.0, 0.1) - 1) / 7;
+  EXPECT_TRUE(binomialCountFits(first, n, share));
+}
+
+// Random samples are not blue noise: their nearest neighbours are about half a
+// spacing away on average (a planar Poisson process: 1 / (2 sqrt(density))), where
+// blue noise keeps them near one spacing.
+TEST(RandomShapes, NearestNeighboursAreThoseOfAPoissonSample)
+{
+  const std::size_t n = 20000;
+  const SampledShape cylinder =
+      shapes::sampleRandom(shapes::Shape::open_cylinder, n, 12);
+  // Sorted by z, the nearest neighbour is found within a window of z.
+  std::vector<Eigen::Vector3d> points = cylinder.points;
+  std::sort(
+      points.begin(), points.end(),
+      [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return a.z() < b.z(); });
+  const double spacing = cylinder.spacing();
+  double sum = 0;
+  std::size_t counted = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    // Away from the rims, whose samples have neighbours on one side only.
+    if (std::abs(points[i].z()) > 1 - 5 * spacing)
+      continue;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t j = i + 1;
+         j < points.size() && points[j].z() - points[i].z() < best; ++j)
+      best = std::min(best, (points[j] - points[i]).norm());
+    for (std::size_t j = i; j-- > 0 && points[i].z() - points[j].z() < best;)
+      best = std::min(best, (points[j] - points[i]).norm());
+    sum += best;
+    ++counted;
+  }
+  const double mean = sum / static_cast<double>(counted) / spacing;
+  std::cout << "[ random   ] mean nearest-neighbour distance: " << mean << " spacing"
+            << std::endl;
+  EXPECT_NEAR(mean, 0.5, 0.02);
 }
 
 INSTANTIATE_TEST_SUITE_P(All, Shapes, ::testing::ValuesIn(kCases), caseName);

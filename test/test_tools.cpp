@@ -559,8 +559,9 @@ TEST_F(Tools, ReconstructionOfHemisphereKeepsItsBoundaryOpen)
 }
 
 // A trefoil-knot tube far too sparse for its thinness: BOUNDARY flags nearly every
-// sample, and boundary samples cast no vote. The tool must say so, not leave the user
-// with a scrap of surface (or nothing) and no reason.
+// sample, and boundary samples cast no vote. The reconstruction falls back to no
+// boundary detection and the tool says so: the user gets the closed tube, and the
+// reason why true boundaries would not have stayed open.
 TEST_F(Tools, ReconstructionOfTooSparseCloudSaysWhy)
 {
   const auto knotFile = [&](std::size_t n) {
@@ -573,26 +574,23 @@ TEST_F(Tools, ReconstructionOfTooSparseCloudSaysWhy)
     return path(name).string();
   };
 
-  // 1000 samples: a few triangles, and a note on stdout.
-  const ToolRun some =
-      run(kReconstruction, {knotFile(1000), path("knot1000.ply").string()});
-  expectSuccess(some);
-  EXPECT_NE(some.out.find("note: "), std::string::npos) << some.out;
-  EXPECT_NE(some.out.find("boundary samples: the cloud is too sparse"),
-            std::string::npos)
-      << some.out;
-  const Summary s = meshSummary(some.out);
-  ASSERT_TRUE(s.found) << some.out;
-  EXPECT_LT(s.vertices, 500); // most of the tube stays uncovered, as the note says
-
-  // 600 samples: no triangle at all; the one-line failure gives the reason.
-  // The samples as given: so sparse a tube (a neighbourhood of 32 samples wraps a
-  // good part of it) measures as noise of 0.74 spacings, and -denoise auto would
-  // smooth it (docs/noise.md, what is left).
-  const std::string sparse = knotFile(600);
-  expectOneLineFailure(
-      run(kReconstruction, {sparse, path("knot600.ply").string(), "-denoise", "off"}),
-      "no triangle: 600 of 600 points are boundary samples");
+  // 1000 and 600 samples: the closed tube, and a note on stdout.
+  for (const std::size_t n : {1000, 600}) {
+    const ToolRun some =
+        run(kReconstruction,
+            {knotFile(n), path("knot" + std::to_string(n) + ".ply").string()});
+    expectSuccess(some);
+    EXPECT_NE(some.out.find("note: "), std::string::npos) << some.out;
+    EXPECT_NE(some.out.find("boundary samples: the cloud is too sparse"),
+              std::string::npos)
+        << some.out;
+    EXPECT_NE(some.out.find("reconstructed without it"), std::string::npos) << some.out;
+    const Summary s = meshSummary(some.out);
+    ASSERT_TRUE(s.found) << some.out;
+    EXPECT_TRUE(s.closed) << some.out;
+    EXPECT_GE(s.vertices, static_cast<long>(n * 95 / 100)) << some.out;
+  }
+  const std::string sparse = path("knot600.xyz").string();
 
   // Extreme parameter values flag every sample of a well-sampled cloud: the reason
   // names them, not the cloud.

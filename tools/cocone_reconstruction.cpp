@@ -75,11 +75,12 @@ sparseNote(const pcl::CoconeReconstruction<pcl::PointXYZ>& cocone, std::string& 
   if (changed.empty())
     note += ": the cloud is too sparse for boundary detection at rho " +
             formatNumber(cocone.getRatioBound()) +
-            "; try a larger -rho or -no_boundary";
+            ", so it was reconstructed without it (every hole closed where it can be); "
+            "a larger -rho keeps true boundaries open";
   else
     note += " with " + changed +
-            ": these values flag most samples; try the defaults, a larger -rho or "
-            "-no_boundary";
+            ": these values flag most samples, so the cloud was reconstructed without "
+            "boundary detection; try the defaults or a larger -rho";
   return true;
 }
 

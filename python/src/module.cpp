@@ -509,10 +509,11 @@ sparseNote(const pcl::CoconeReconstruction<pcl::PointXYZ>& cocone)
   if (changed.empty())
     return note + ": the cloud is too sparse for boundary detection at rho " +
            format(cocone.getRatioBound()) +
-           "; try a larger rho or boundary_detection=False";
+           ", so it was reconstructed without it (every hole closed where it can "
+           "be); a larger rho keeps true boundaries open";
   return note + " with " + changed +
-         ": these values flag most samples; try the defaults, a larger rho or "
-         "boundary_detection=False";
+         ": these values flag most samples, so the cloud was reconstructed without "
+         "boundary detection; try the defaults or a larger rho";
 }
 
 Mesh
@@ -1048,8 +1049,8 @@ PYBIND11_MODULE(pcl_cocone, m)
       threads_doc + progress_doc +
       "\nReturns\n-------\n"
       "Mesh\n"
-      "    A cloud too sparse for boundary detection gives few or no triangles and\n"
-      "    a RuntimeWarning that says so.\n" +
+      "    A cloud too sparse for boundary detection (most samples flagged) is\n"
+      "    reconstructed without it, with a RuntimeWarning that says so.\n" +
       raises_doc;
   m.def("reconstruct", &reconstruct, "points"_a, py::kw_only(),
         "theta"_a = cocone.getCoconeAngle(), "rho"_a = cocone.getRatioBound(),

@@ -4,6 +4,8 @@
 #include "common/parallel.h"
 #include "reconstruction/local_spacing.h"
 
+#include <pcl/console/print.h>
+
 #include <Eigen/Geometry>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -66,14 +68,14 @@ collectCandidates(const VoronoiCocone& voronoi,
 // triangles across it: the candidates cover the hole with a lid of triangles larger
 // than those of a sampled surface (whose circumradius stays below about 0.9 local
 // spacings). Oversized candidates are grouped into patches (connected through edges);
-// a patch as large as a true boundary (isTrueBoundary) that touches a boundary sample
-// or its neighbours is a lid and is removed, so the hole stays open. Large patches far
-// from any boundary sample are sparsely sampled flat regions (as in meshes decimated
-// adaptively) and stay. Measured on the Stanford bunny: without this step two of the
-// five holes of its base stay open, with it all five, and no other loop.
+// a patch that the hole rule calls a true boundary (HoleRule: large, and flagged along
+// its rim) is a lid and is removed, so the hole stays open. Large patches without
+// flags along their rim are sparsely sampled flat regions (as in meshes decimated
+// adaptively) or the wide gaps of a random sample, and stay. Measured on the Stanford
+// bunny: without this step two of the five holes of its base stay open, with it all
+// five, and no other loop.
 std::size_t
-removeLids(MeshState& mesh, const std::vector<double>& spacing,
-           const std::vector<std::uint8_t>& boundary, double true_boundary_ratio,
+removeLids(MeshState& mesh, const std::vector<double>& spacing, const HoleRule& rule,
            unsigned threads)
 {
   const std::vector<Vector>& points = mesh.points();
@@ -92,17 +94,9 @@ removeLids(MeshState& mesh, const std::vector<double>& spacing,
                         }
                       });
   });
-  // Boundary samples and the samples sharing a candidate with one.
-  std::vector<std::uint8_t> near_boundary(boundary);
-  for (std::uint32_t t = 0; t < mesh.poolSize(); ++t) {
-    const TriangleIndices& tri = mesh.triangle(t);
-    if (boundary[tri[0]] || boundary[tri[1]] || boundary[tri[2]])
-      for (const SampleIndex v : tri)
-        near_boundary[v] = 1;
-  }
   std::vector<std::uint8_t> seen(mesh.poolSize(), 0);
   std::vector<std::uint32_t> patch, on_edge;
-  std::vector<SampleIndex> vertices;
+  std::vector<SampleIndex> vertices, rim;
   std::size_t lids = 0;
   for (std::uint32_t start = 0; start < mesh.poolSize(); ++start) {
     if (!oversized[start] || seen[start])
@@ -110,6 +104,7 @@ removeLids(MeshState& mesh, const std::vector<double>& spacing,
     patch.assign(1, start);
     seen[start] = 1;
     double area = 0, perimeter = 0;
+    rim.clear();
     for (std::size_t head = 0; head < patch.size(); ++head) {
       const TriangleIndices& tri = mesh.triangle(patch[head]);
       area += 0.5 * (points[tri[1]] - points[tri[0]])
@@ -119,8 +114,11 @@ removeLids(MeshState& mesh, const std::vector<double>& spacing,
         const SampleIndex a = tri[k], b = tri[(k + 1) % 3];
         mesh.trianglesOnEdge(
             a, b, [&](std::uint32_t s) { return oversized[s] != 0; }, on_edge);
-        if (on_edge.size() == 1)
+        if (on_edge.size() == 1) {
           perimeter += (points[a] - points[b]).norm();
+          rim.push_back(a);
+          rim.push_back(b);
+        }
         for (const std::uint32_t s : on_edge)
           if (!seen[s]) {
             seen[s] = 1;
@@ -131,17 +129,41 @@ removeLids(MeshState& mesh, const std::vector<double>& spacing,
     vertices.clear();
     for (const std::uint32_t t : patch)
       vertices.insert(vertices.end(), mesh.triangle(t).begin(), mesh.triangle(t).end());
-    if (!isTrueBoundary(area, perimeter, typicalSpacing(spacing, vertices),
-                        true_boundary_ratio))
-      continue;
-    if (std::none_of(vertices.begin(), vertices.end(),
-                     [&](SampleIndex v) { return near_boundary[v] != 0; }))
-      continue; // a sparsely sampled flat region, not a hole
+    const double local = typicalSpacing(spacing, vertices);
+    if (!isTrueBoundary(area, perimeter, local, rule.sizeRatio()))
+      continue; // small: a sampling gap
+    const bool lid = rule.isTrueBoundary(area, perimeter, local, rim);
+    const RimFlags flags = rule.rimFlags(rim, local);
+    PCL_VERBOSE(
+        "[pcl::cocone::reconstructSurface] patch of %zu oversized candidates, "
+        "size %.2f local spacings: %zu of %zu rim samples flagged, %zu distinct: "
+        "%s\n",
+        patch.size(), 2 * area / perimeter / local, flags.flagged, flags.rim,
+        flags.distinct, lid ? "a lid over a true boundary" : "kept");
+    if (!lid)
+      continue; // a sparsely sampled region or a sampling gap, not a hole
     for (const std::uint32_t t : patch)
       mesh.reject(t);
     lids += patch.size();
   }
   return lids;
+}
+
+std::size_t
+rejectLargeCandidates(MeshState& mesh, const std::vector<double>& spacing, double ratio)
+{
+  const std::vector<Vector>& points = mesh.points();
+  std::size_t rejected = 0;
+  for (std::uint32_t t = 0; t < mesh.poolSize(); ++t) {
+    const TriangleIndices& tri = mesh.triangle(t);
+    const double local = std::max({spacing[tri[0]], spacing[tri[1]], spacing[tri[2]]});
+    if (mesh.state(t) == kCandidate &&
+        circumradius(points[tri[0]], points[tri[1]], points[tri[2]]) > ratio * local) {
+      mesh.reject(t);
+      ++rejected;
+    }
+  }
+  return rejected;
 }
 
 } // namespace detail

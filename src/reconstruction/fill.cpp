@@ -52,7 +52,7 @@ PolygonFiller::fill(std::vector<SampleIndex>& loop, double spacing)
         "[pcl::cocone::reconstructSurface] hole of %zu edges: polygon fill of size "
         "%.2f local spacings\n",
         loop.size(), 2 * fill_area / perimeter / spacing);
-    if (isTrueBoundary(fill_area, perimeter, spacing, true_boundary_ratio_))
+    if (rule_.isTrueBoundary(fill_area, perimeter, spacing, loop))
       break;
     added.clear();
     for (const TriangleIndices& t : fill) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "reconstruction/least_area_fill.h"
+#include "reconstruction/local_spacing.h"
 #include "reconstruction/mesh_state.h"
 #include "reconstruction/walk.h"
 
@@ -32,10 +33,9 @@ class PolygonFiller
 {
 public:
   /** Fills holes of \a mesh, resolving through \a pinches the pinches that growing a
-   * hole makes; a fill larger than \a true_boundary_ratio local spacings is a true
-   * boundary, and is not made. */
-  PolygonFiller(MeshState& mesh, PinchResolver& pinches, double true_boundary_ratio)
-    : mesh_(mesh), pinches_(pinches), true_boundary_ratio_(true_boundary_ratio)
+   * hole makes; a hole that \a rule calls a true boundary is not filled. */
+  PolygonFiller(MeshState& mesh, PinchResolver& pinches, const HoleRule& rule)
+    : mesh_(mesh), pinches_(pinches), rule_(rule)
   {}
 
   /** Closes the hole of \a loop (as the mesh triangles run it), whose samples are
@@ -50,7 +50,7 @@ private:
 
   MeshState& mesh_;
   PinchResolver& pinches_;
-  const double true_boundary_ratio_;
+  const HoleRule& rule_;
   // Reused from one fill to the next.
   LeastAreaFillScratch scratch_;
   std::vector<std::uint32_t> near_;        // mesh triangles near the loop

@@ -54,9 +54,9 @@ flagBoundarySamples(const VoronoiCocone& voronoi,
       detectBoundarySamples(voronoi, as_published, report.boundary_samples, &message);
   if (status != Status::ok)
     throw detail::StageFailure{status, message};
-  // Boundary samples cast no vote: when they are the majority, too few triangles are
-  // chosen to cover the surface (Power Crust's 1281-point knot: 98% flagged, 11% of
-  // the samples used). Say so, with the way out, rather than return a scrap silently.
+  // Boundary samples cast no vote: when they are the majority, too few triangles would
+  // be chosen to cover the surface (Power Crust's 1281-point knot: 98% flagged, 12% of
+  // the samples used). runStages then falls back to no detection; say so.
   for (SampleIndex v = 0; v < n; ++v)
     report.distinct_boundary_samples +=
         report.boundary_samples[v] && voronoi.representative(v) == v;
@@ -64,8 +64,8 @@ flagBoundarySamples(const VoronoiCocone& voronoi,
   if (report.tooSparseForBoundaryDetection())
     PCL_WARN("[pcl::cocone::reconstructSurface] %zu of %zu distinct samples are "
              "boundary samples: the cloud is too sparse for boundary detection at rho "
-             "%g, and most of the surface will stay uncovered; a larger rho or no "
-             "boundary detection fits it better.\n",
+             "%g, so it is reconstructed without it (every hole is closed where it "
+             "can be); a larger rho fits it better if it has true boundaries.\n",
              report.distinct_boundary_samples, report.distinct_samples,
              parameters.boundary.ratio_bound);
 }
@@ -91,15 +91,28 @@ runStages(const VoronoiCocone& voronoi, const ReconstructionParameters& paramete
   ReconstructionReport::Timings& timings = report.timings;
   const unsigned threads = voronoi.getNumberOfThreads();
   const double ratio = parameters.true_boundary_ratio;
-  const std::vector<std::uint8_t>& boundary = report.boundary_samples;
   detail::MeshState mesh(voronoi.centeredPoints());
   flagBoundarySamples(voronoi, parameters, report);
   lap(timings.boundary, "boundary samples");
   progress.report(0.05);
 
+  // The sparse fallback (see tooSparseForBoundaryDetection): when most samples are
+  // flagged, the flags say that the cloud is sparse, not where its rims are. Every
+  // sample then votes, and no hole counts as a true boundary; candidates larger than a
+  // sampled surface's triangles are dropped instead, so that the cocones of a thin,
+  // sparse part do not bridge it.
+  const bool sparse = report.tooSparseForBoundaryDetection();
+  const std::vector<std::uint8_t> no_flags(sparse ? voronoi.size() : 0, 0);
+  const std::vector<std::uint8_t>& boundary =
+      sparse ? no_flags : report.boundary_samples;
+  const detail::HoleRule rule(mesh.points(), boundary, ratio);
+
   const std::vector<double> spacing = detail::measureLocalSpacing(voronoi);
   report.candidate_triangles = detail::collectCandidates(voronoi, boundary, mesh);
-  report.lid_triangles = detail::removeLids(mesh, spacing, boundary, ratio, threads);
+  if (sparse)
+    report.candidate_triangles -=
+        detail::rejectLargeCandidates(mesh, spacing, detail::kSparseCandidateRadius);
+  report.lid_triangles = detail::removeLids(mesh, spacing, rule, threads);
   lap(timings.candidates, "candidates and lids");
   progress.report(0.2);
 
@@ -119,8 +132,8 @@ runStages(const VoronoiCocone& voronoi, const ReconstructionParameters& paramete
   // its bounding box since (a loop that stayed open would stay open again): removing
   // crossings and inserting samples change the mesh, and open holes, and so does
   // growing a hole over the triangles in the way of its fill (they need not touch it).
-  detail::PolygonFiller filler(mesh, pinches, ratio);
-  detail::Stitcher stitcher(mesh, voronoi, spacing, pruner, walker, filler, ratio);
+  detail::PolygonFiller filler(mesh, pinches, rule);
+  detail::Stitcher stitcher(mesh, voronoi, spacing, pruner, walker, filler, rule);
   if (parameters.stitch_holes)
     stitcher.stitchLoops();
   mesh.logChanges(true);

@@ -30,9 +30,18 @@ Stitcher::typicalSpacing(const std::vector<SampleIndex>& samples) const
 }
 
 bool
-Stitcher::isTrueBoundary(double area, double perimeter, double spacing) const
+Stitcher::isTrueBoundary(double area, double perimeter, double spacing,
+                         const std::vector<SampleIndex>& loop) const
 {
-  return detail::isTrueBoundary(area, perimeter, spacing, true_boundary_ratio_);
+  const bool kept_open = rule_.isTrueBoundary(area, perimeter, spacing, loop);
+  if (detail::isTrueBoundary(area, perimeter, spacing, rule_.sizeRatio())) {
+    const RimFlags flags = rule_.rimFlags(loop, spacing);
+    PCL_VERBOSE("[pcl::cocone::reconstructSurface] hole of %zu edges, size %.2f local "
+                "spacings: %zu of %zu rim samples flagged, %zu distinct: %s\n",
+                loop.size(), 2 * area / perimeter / spacing, flags.flagged, flags.rim,
+                flags.distinct, kept_open ? "true boundary" : "undersampling hole");
+  }
+  return kept_open;
 }
 
 // Stitching (paper 3.4.2): for each hole, the Delaunay triangles with all vertices on
@@ -90,7 +99,7 @@ Stitcher::stitch(std::vector<std::vector<SampleIndex>>& loops)
           vector_area += 0.5 * points[loops[h][k]].cross(
                                    points[loops[h][(k + 1) % loops[h].size()]]);
         kept_open[h] = isTrueBoundary(vector_area.norm(), mesh_.loopLength(loops[h]),
-                                      typicalSpacing(vertices));
+                                      typicalSpacing(vertices), loops[h]);
       }
       if (!kept_open[h])
         voronoi_.delaunayTrianglesAmong(vertices, offered[h]);
@@ -157,7 +166,7 @@ Stitcher::stitch(std::vector<std::vector<SampleIndex>>& loops)
         "size %.2f local spacings\n",
         loop.size(), walk_closes ? "closes it" : "does not close it",
         2 * fill_area / perimeter / spacing);
-    if (walk_closes && !isTrueBoundary(fill_area, perimeter, spacing)) {
+    if (walk_closes && !isTrueBoundary(fill_area, perimeter, spacing, loop)) {
       ++stitched_holes_;
       stitched_triangles_ += added.size();
       stitched[h] = 1;

@@ -27,9 +27,9 @@ public:
    * \a walker as the candidates, and \a filler. */
   Stitcher(MeshState& mesh, const VoronoiCocone& voronoi,
            const std::vector<double>& spacing, Pruner& pruner, Walker& walker,
-           PolygonFiller& filler, double true_boundary_ratio)
+           PolygonFiller& filler, const HoleRule& rule)
     : mesh_(mesh), voronoi_(voronoi), spacing_(spacing), pruner_(pruner),
-      walker_(walker), filler_(filler), true_boundary_ratio_(true_boundary_ratio)
+      walker_(walker), filler_(filler), rule_(rule)
   {}
 
   /** One round: offers the loops of the mesh not offered before, and those offered
@@ -56,7 +56,8 @@ public:
 
 private:
   double typicalSpacing(const std::vector<SampleIndex>& samples) const;
-  bool isTrueBoundary(double area, double perimeter, double spacing) const;
+  bool isTrueBoundary(double area, double perimeter, double spacing,
+                      const std::vector<SampleIndex>& loop) const;
 
   MeshState& mesh_;
   const VoronoiCocone& voronoi_;
@@ -64,7 +65,7 @@ private:
   Pruner& pruner_;
   Walker& walker_;
   PolygonFiller& filler_;
-  const double true_boundary_ratio_;
+  const HoleRule& rule_;
   std::vector<std::vector<SampleIndex>> tried_; // vertex sets of the loops offered
   std::size_t stitched_holes_ = 0, stitched_triangles_ = 0;
 };

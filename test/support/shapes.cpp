@@ -3,7 +3,9 @@
 // Blue-noise samples of analytic surfaces. Every generator draws about 5 n candidates
 // uniformly by area (or by a prescribed density) and thins them to exactly n points
 // with weighted sample elimination (C. Yuksel, "Sample Elimination for Generating
-// Poisson Disk Sample Sets", Computer Graphics Forum 34(2), 2015).
+// Poisson Disk Sample Sets", Computer Graphics Forum 34(2), 2015). sampleRandom keeps
+// the draws themselves instead, n of them, as a scanner's samples are spread: close
+// pairs and wide gaps (sampleRandomly).
 #include "support/shapes.h"
 
 #include <Eigen/Geometry>
@@ -365,15 +367,81 @@ using Draw = std::function<void(Random&, Eigen::Vector3d&, Eigen::Vector3d&)>;
  * density proportional to \a density, uniform when empty), weighted sample elimination
  * down to n, normal jitter. \a weighted_area is the integral of the density over the
  * surface (the area when uniform). */
+/** How a generator spreads its points (see shapes.h). */
+struct Spread
+{
+  bool random = false;       ///< area-uniform random; blue noise otherwise
+  bool density_ramp = false; ///< (random only) density 1 to 8 along x
+};
+
+constexpr double kRampRatio = 8; ///< densest over sparsest, with density_ramp
+
+/** Fills shape.points and shape.normals with n independent draws, each kept with
+ * probability proportional to the density ramp when it is on, and the normal jitter
+ * of random samples. */
 void
-sampleSurface(SampledShape& shape, std::size_t n, std::uint32_t seed, const Draw& draw,
-              double weighted_area,
+sampleRandomly(SampledShape& shape, std::size_t n, std::uint32_t seed,
+               const Spread& spread, const Draw& draw)
+{
+  Random random(seed);
+  Eigen::Vector3d p, normal;
+  // The ramp runs along x over the shape's extent, measured on a pilot draw (its ends
+  // may fall a little short of the true extent: the density is clamped there).
+  double lo_x = 0, hi_x = 1;
+  if (spread.density_ramp) {
+    lo_x = std::numeric_limits<double>::infinity();
+    hi_x = -lo_x;
+    for (int k = 0; k < 4096; ++k) {
+      draw(random, p, normal);
+      lo_x = std::min(lo_x, p.x());
+      hi_x = std::max(hi_x, p.x());
+    }
+  }
+  const auto keep = [&](const Eigen::Vector3d& q) {
+    if (!spread.density_ramp)
+      return true;
+    const double t = std::clamp((q.x() - lo_x) / (hi_x - lo_x), 0.0, 1.0);
+    // density 8^t, relative to its largest value 8
+    return random.uniform() < std::pow(kRampRatio, t - 1);
+  };
+  std::vector<Eigen::Vector3d> normals;
+  shape.points.reserve(n);
+  normals.reserve(n);
+  while (shape.points.size() < n) {
+    draw(random, p, normal);
+    if (!keep(p))
+      continue;
+    shape.points.push_back(p);
+    normals.push_back(normal);
+  }
+  Eigen::Vector3d lo = shape.points.front(), hi = lo;
+  for (const Eigen::Vector3d& q : shape.points) {
+    lo = lo.cwiseMin(q);
+    hi = hi.cwiseMax(q);
+  }
+  // Exact samples of an analytic surface are nearly co-spherical in many places, which
+  // makes Delaunay slow; a jitter of 1e-5 of the diagonal (a scanner's noise is larger)
+  // is enough. Random samples come close to each other anyway, so the blue-noise
+  // bound on the jitter (against moving deep Voronoi vertices) has nothing to protect.
+  const double jitter = 1e-5 * (hi - lo).norm();
+  for (std::size_t i = 0; i < n; ++i)
+    shape.points[i] += random.uniform(-jitter, jitter) * normals[i];
+  shape.normals = std::move(normals);
+}
+
+void
+sampleSurface(SampledShape& shape, std::size_t n, std::uint32_t seed,
+              const Spread& spread, const Draw& draw, double weighted_area,
               const std::function<double(const Eigen::Vector3d&)>& density = {})
 {
   shape.points.clear();
   shape.normals.clear();
   if (n == 0)
     return;
+  if (spread.random) {
+    sampleRandomly(shape, n, seed, spread, draw);
+    return;
+  }
   Random random(seed);
   const std::size_t m = 5 * n;
   std::vector<Eigen::Vector3d> points(m), normals(m);
@@ -624,14 +692,14 @@ setWholeUnitSphereFacts(SampledShape& shape)
 // ---------------------------------------------------------------------------------
 
 SampledShape
-sampleSphere(std::size_t n, std::uint32_t seed)
+spreadSphere(std::size_t n, std::uint32_t seed, const Spread& spread)
 {
   SampledShape shape;
   shape.name = "sphere";
   shape.area = 4 * kPi;
   // Archimedes: z uniform in [-1, 1] is uniform by area on the sphere.
   sampleSurface(
-      shape, n, seed,
+      shape, n, seed, spread,
       [](Random& random, Eigen::Vector3d& p, Eigen::Vector3d& normal) {
         const double z = random.uniform(-1, 1);
         const double a = random.uniform(0, 2 * kPi);
@@ -644,7 +712,7 @@ sampleSphere(std::size_t n, std::uint32_t seed)
 }
 
 SampledShape
-sampleSphereWithDenseCap(std::size_t n, std::uint32_t seed)
+spreadSphereWithDenseCap(std::size_t n, std::uint32_t seed, const Spread& spread)
 {
   SampledShape shape;
   shape.name = "sphere_dense_cap";
@@ -656,7 +724,7 @@ sampleSphereWithDenseCap(std::size_t n, std::uint32_t seed)
   const double weighted_area = density * cap_area + rest_area;
   const double cap_share = density * cap_area / weighted_area;
   sampleSurface(
-      shape, n, seed,
+      shape, n, seed, spread,
       [=](Random& random, Eigen::Vector3d& p, Eigen::Vector3d& normal) {
         const bool cap = random.uniform() < cap_share;
         const double z = cap ? random.uniform(cap_z, 1) : random.uniform(-1, cap_z);
@@ -671,7 +739,7 @@ sampleSphereWithDenseCap(std::size_t n, std::uint32_t seed)
 }
 
 SampledShape
-sampleTorus(std::size_t n, std::uint32_t seed)
+spreadTorus(std::size_t n, std::uint32_t seed, const Spread& spread)
 {
   const double big = 1.0, small = 0.35;
   SampledShape shape;
@@ -680,7 +748,7 @@ sampleTorus(std::size_t n, std::uint32_t seed)
   shape.area = 4 * kPi * kPi * big * small;
   // The area element is small * (big + small cos v) du dv: v by rejection.
   sampleSurface(
-      shape, n, seed,
+      shape, n, seed, spread,
       [=](Random& random, Eigen::Vector3d& p, Eigen::Vector3d& normal) {
         double v;
         do
@@ -703,7 +771,7 @@ sampleTorus(std::size_t n, std::uint32_t seed)
 }
 
 SampledShape
-sampleTrefoilKnot(std::size_t n, std::uint32_t seed)
+spreadTrefoilKnot(std::size_t n, std::uint32_t seed, const Spread& spread)
 {
   const double r = kKnotRadius;
   SampledShape shape;
@@ -727,7 +795,7 @@ sampleTrefoilKnot(std::size_t n, std::uint32_t seed)
   shape.area = 2 * kPi * r * length;
 
   sampleSurface(
-      shape, n, seed,
+      shape, n, seed, spread,
       [=](Random& random, Eigen::Vector3d& p, Eigen::Vector3d& normal) {
         for (;;) {
           const double t = random.uniform(0, 2 * kPi);
@@ -762,7 +830,7 @@ sampleTrefoilKnot(std::size_t n, std::uint32_t seed)
 }
 
 SampledShape
-sampleGenus3(std::size_t n, std::uint32_t seed)
+spreadGenus3(std::size_t n, std::uint32_t seed, const Spread& spread)
 {
   const double R = kSlabR, L = kSlabL, W = kSlabW, rho = kSlabRho;
   SampledShape shape;
@@ -787,7 +855,7 @@ sampleGenus3(std::size_t n, std::uint32_t seed)
 
   const double area = shape.area;
   sampleSurface(
-      shape, n, seed,
+      shape, n, seed, spread,
       [=](Random& random, Eigen::Vector3d& p, Eigen::Vector3d& normal) {
         const double pick = random.uniform();
         const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
@@ -844,7 +912,7 @@ sampleGenus3(std::size_t n, std::uint32_t seed)
 }
 
 SampledShape
-sampleHemisphere(std::size_t n, std::uint32_t seed)
+spreadHemisphere(std::size_t n, std::uint32_t seed, const Spread& spread)
 {
   SampledShape shape;
   shape.name = "hemisphere";
@@ -852,7 +920,7 @@ sampleHemisphere(std::size_t n, std::uint32_t seed)
   shape.closed = false;
   shape.boundary_loops = 1;
   sampleSurface(
-      shape, n, seed,
+      shape, n, seed, spread,
       [](Random& random, Eigen::Vector3d& p, Eigen::Vector3d& normal) {
         const double z = random.uniform(0, 1);
         const double a = random.uniform(0, 2 * kPi);
@@ -989,7 +1057,7 @@ private:
 } // namespace
 
 SampledShape
-sampleMonkeySaddle(std::size_t n, std::uint32_t seed)
+spreadMonkeySaddle(std::size_t n, std::uint32_t seed, const Spread& spread)
 {
   SampledShape shape;
   shape.name = "monkey_saddle";
@@ -1000,7 +1068,7 @@ sampleMonkeySaddle(std::size_t n, std::uint32_t seed)
   shape.area = kPi * (std::sqrt(10.0) / 2 + std::asinh(3.0) / 6);
   const double max_element = std::sqrt(10.0);
   sampleSurface(
-      shape, n, seed,
+      shape, n, seed, spread,
       [=](Random& random, Eigen::Vector3d& p, Eigen::Vector3d& normal) {
         double x, y, rr;
         do {
@@ -1029,7 +1097,7 @@ sampleMonkeySaddle(std::size_t n, std::uint32_t seed)
 }
 
 SampledShape
-sampleOpenCylinder(std::size_t n, std::uint32_t seed)
+spreadOpenCylinder(std::size_t n, std::uint32_t seed, const Spread& spread)
 {
   const double radius = 0.5, half_height = 1;
   SampledShape shape;
@@ -1038,7 +1106,7 @@ sampleOpenCylinder(std::size_t n, std::uint32_t seed)
   shape.boundary_loops = 2;
   shape.area = 2 * kPi * radius * 2 * half_height;
   sampleSurface(
-      shape, n, seed,
+      shape, n, seed, spread,
       [=](Random& random, Eigen::Vector3d& p, Eigen::Vector3d& normal) {
         const double z = random.uniform(-half_height, half_height);
         const double a = random.uniform(0, 2 * kPi);
@@ -1060,14 +1128,86 @@ sampleOpenCylinder(std::size_t n, std::uint32_t seed)
   return shape;
 }
 
+namespace {
+
+/** Distance from \a x to the segment from \a a to \a b. */
+double
+distanceToSegment(const Eigen::Vector3d& x, const Eigen::Vector3d& a,
+                  const Eigen::Vector3d& b)
+{
+  const Eigen::Vector3d ab = b - a;
+  const double t = std::clamp((x - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return (x - (a + t * ab)).norm();
+}
+
+} // namespace
+
 SampledShape
-sampleCube(std::size_t n, std::uint32_t seed)
+spreadHalfCylinder(std::size_t n, std::uint32_t seed, const Spread& spread)
+{
+  const double radius = 0.5, half_height = 1;
+  SampledShape shape;
+  shape.name = "half_cylinder";
+  shape.closed = false;
+  shape.boundary_loops = 1;
+  shape.area = kPi * radius * 2 * half_height;
+  sampleSurface(
+      shape, n, seed, spread,
+      [=](Random& random, Eigen::Vector3d& p, Eigen::Vector3d& normal) {
+        const double z = random.uniform(-half_height, half_height);
+        const double a = random.uniform(0, kPi);
+        normal = Eigen::Vector3d(std::cos(a), std::sin(a), 0);
+        p = radius * normal + Eigen::Vector3d(0, 0, z);
+      },
+      shape.area);
+  // The rim: two half circles joined by the two straight edges at y = 0, x = +-radius
+  // (four corners of 90 degrees).
+  const std::size_t arc_count = rimCount(kPi * radius, shape);
+  for (const double z : {-half_height, half_height})
+    for (std::size_t k = 0; k <= arc_count; ++k) {
+      const double a = kPi * static_cast<double>(k) / static_cast<double>(arc_count);
+      shape.rim.emplace_back(radius * std::cos(a), radius * std::sin(a), z);
+    }
+  const std::size_t line_count = rimCount(2 * half_height, shape);
+  for (const double x : {-radius, radius})
+    for (std::size_t k = 1; k < line_count; ++k)
+      shape.rim.emplace_back(
+          x, 0, -half_height + 2 * half_height * static_cast<double>(k) / line_count);
+  const Eigen::Vector3d left_low(-radius, 0, -half_height),
+      left_high(-radius, 0, half_height);
+  const Eigen::Vector3d right_low(radius, 0, -half_height),
+      right_high(radius, 0, half_height);
+  const auto to_edges = [=](const Eigen::Vector3d& x) {
+    return std::min(distanceToSegment(x, left_low, left_high),
+                    distanceToSegment(x, right_low, right_high));
+  };
+  shape.distance_to_rim = [=](const Eigen::Vector3d& x) {
+    // The nearest point of an arc is the radial one when x lies over the arc (y >= 0),
+    // an end of the arc (on the straight edges) otherwise.
+    double arcs = kInfinity;
+    if (x.y() >= 0)
+      arcs =
+          std::hypot(std::hypot(x.x(), x.y()) - radius, std::abs(x.z()) - half_height);
+    return std::min(arcs, to_edges(x));
+  };
+  shape.distance_to_surface = [=](const Eigen::Vector3d& x) {
+    if (x.y() < 0) // over a in [0, pi], x.(cos a, sin a) peaks at a = 0 or pi
+      return to_edges(x);
+    const double radial = std::hypot(x.x(), x.y()) - radius;
+    const double beyond = std::max(0.0, std::abs(x.z()) - half_height);
+    return std::hypot(radial, beyond);
+  };
+  return shape;
+}
+
+SampledShape
+spreadCube(std::size_t n, std::uint32_t seed, const Spread& spread)
 {
   SampledShape shape;
   shape.name = "cube";
   shape.area = 24;
   sampleSurface(
-      shape, n, seed,
+      shape, n, seed, spread,
       [](Random& random, Eigen::Vector3d& p, Eigen::Vector3d& normal) {
         const std::size_t face = random.index(6);
         const int axis = static_cast<int>(face / 2);
@@ -1110,6 +1250,113 @@ sampleCube(std::size_t n, std::uint32_t seed)
     return -excess.maxCoeff();
   };
   return shape;
+}
+
+// ---------------------------------------------------------------------------------
+
+namespace {
+
+constexpr Spread kBlueNoise{};
+
+} // namespace
+
+SampledShape
+sampleSphere(std::size_t n, std::uint32_t seed)
+{
+  return spreadSphere(n, seed, kBlueNoise);
+}
+
+SampledShape
+sampleSphereWithDenseCap(std::size_t n, std::uint32_t seed)
+{
+  return spreadSphereWithDenseCap(n, seed, kBlueNoise);
+}
+
+SampledShape
+sampleTorus(std::size_t n, std::uint32_t seed)
+{
+  return spreadTorus(n, seed, kBlueNoise);
+}
+
+SampledShape
+sampleTrefoilKnot(std::size_t n, std::uint32_t seed)
+{
+  return spreadTrefoilKnot(n, seed, kBlueNoise);
+}
+
+SampledShape
+sampleGenus3(std::size_t n, std::uint32_t seed)
+{
+  return spreadGenus3(n, seed, kBlueNoise);
+}
+
+SampledShape
+sampleHemisphere(std::size_t n, std::uint32_t seed)
+{
+  return spreadHemisphere(n, seed, kBlueNoise);
+}
+
+SampledShape
+sampleMonkeySaddle(std::size_t n, std::uint32_t seed)
+{
+  return spreadMonkeySaddle(n, seed, kBlueNoise);
+}
+
+SampledShape
+sampleOpenCylinder(std::size_t n, std::uint32_t seed)
+{
+  return spreadOpenCylinder(n, seed, kBlueNoise);
+}
+
+SampledShape
+sampleHalfCylinder(std::size_t n, std::uint32_t seed)
+{
+  return spreadHalfCylinder(n, seed, kBlueNoise);
+}
+
+SampledShape
+sampleCube(std::size_t n, std::uint32_t seed)
+{
+  return spreadCube(n, seed, kBlueNoise);
+}
+
+const std::vector<Shape>&
+allShapes()
+{
+  static const std::vector<Shape> shapes = {
+      Shape::sphere,        Shape::torus,         Shape::trefoil_knot,
+      Shape::genus3,        Shape::cube,          Shape::hemisphere,
+      Shape::open_cylinder, Shape::half_cylinder, Shape::monkey_saddle};
+  return shapes;
+}
+
+SampledShape
+sampleRandom(Shape shape, std::size_t n, std::uint32_t seed, bool density_ramp)
+{
+  Spread spread;
+  spread.random = true;
+  spread.density_ramp = density_ramp;
+  switch (shape) {
+  case Shape::sphere:
+    return spreadSphere(n, seed, spread);
+  case Shape::torus:
+    return spreadTorus(n, seed, spread);
+  case Shape::trefoil_knot:
+    return spreadTrefoilKnot(n, seed, spread);
+  case Shape::genus3:
+    return spreadGenus3(n, seed, spread);
+  case Shape::cube:
+    return spreadCube(n, seed, spread);
+  case Shape::hemisphere:
+    return spreadHemisphere(n, seed, spread);
+  case Shape::open_cylinder:
+    return spreadOpenCylinder(n, seed, spread);
+  case Shape::half_cylinder:
+    return spreadHalfCylinder(n, seed, spread);
+  case Shape::monkey_saddle:
+    return spreadMonkeySaddle(n, seed, spread);
+  }
+  return {};
 }
 
 } // namespace test

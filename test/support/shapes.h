@@ -87,6 +87,39 @@ SampledShape sampleOpenCylinder(std::size_t n, std::uint32_t seed = 1);
 /** Surface of the cube [-1, 1]^3: closed, genus 0, 12 sharp edges. */
 SampledShape sampleCube(std::size_t n, std::uint32_t seed = 1);
 
+/** Half of the open cylinder: the part y >= 0 (open: one boundary loop, two half
+ * circles and two straight edges meeting at four right-angled corners). */
+SampledShape sampleHalfCylinder(std::size_t n, std::uint32_t seed = 1);
+
+/** The shapes above, for sampleRandom (the dense-cap sphere is left out: its density
+ * is its point). */
+enum class Shape
+{
+  sphere,
+  torus,
+  trefoil_knot,
+  genus3,
+  cube,
+  hemisphere,
+  open_cylinder,
+  half_cylinder,
+  monkey_saddle,
+};
+
+/** Every Shape, closed ones first. */
+const std::vector<Shape>& allShapes();
+
+/** The same shapes sampled as a scanner does rather than as blue noise: n independent
+ * area-uniform random points (a Poisson sample: close pairs and wide gaps, the widest
+ * empty disc growing like sqrt(log n) spacings), deterministic for a given seed, with
+ * a normal jitter of at most 1e-5 of the bounding-box diagonal. With \a density_ramp
+ * the density per unit area grows as 8^t along x (t from 0 to 1 over the shape's
+ * extent): 8 times denser at one end than at the other. The facts (area, genus,
+ * loops, rim, distances) are those of the blue-noise generators; spacing() is the
+ * mean one. */
+SampledShape sampleRandom(Shape shape, std::size_t n, std::uint32_t seed = 1,
+                          bool density_ramp = false);
+
 } // namespace test
 } // namespace cocone
 } // namespace pcl
