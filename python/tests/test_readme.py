@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The README's Python section runs as written: its ```python blocks, in order, in one
-session, each print giving what its comment says."""
+"""The README's section "Use it from Python" runs as written: its ```python blocks, in
+order, in one session, each print giving what its comment says."""
 import contextlib
 import io
 import os
@@ -9,13 +9,21 @@ import re
 
 import pytest
 
-SECTION = (pathlib.Path(os.environ.get("PCL_COCONE_SOURCE_DIR",
-                                       pathlib.Path(__file__).parents[2]))
-           / "python" / "README-section.md")
+README = (pathlib.Path(os.environ.get("PCL_COCONE_SOURCE_DIR",
+                                      pathlib.Path(__file__).parents[2]))
+          / "README.md")
+
+
+def section():
+    """README.md from its "## Use it from Python" heading to the next "## " heading."""
+    text = README.read_text()
+    start = text.index("## Use it from Python\n")
+    end = text.find("\n## ", start + 1)
+    return text[start:] if end < 0 else text[start:end]
 
 
 def blocks():
-    return re.findall(r"^```python\n(.*?)^```", SECTION.read_text(), re.S | re.M)
+    return re.findall(r"^```python\n(.*?)^```", section(), re.S | re.M)
 
 
 def expected_output(block):
@@ -36,5 +44,5 @@ def test_the_python_section_runs_as_written(tmp_path, monkeypatch):
             pytest.importorskip("open3d", reason="Open3D is not installed")
         output = io.StringIO()
         with contextlib.redirect_stdout(output):
-            exec(compile(block, str(SECTION), "exec"), session)
+            exec(compile(block, str(README), "exec"), session)
         assert output.getvalue() == expected_output(block), block
