@@ -215,6 +215,16 @@ threadCount(long long threads)
   return static_cast<unsigned>(threads);
 }
 
+/** The denoising mode named \a name ("auto", "on" or "off"), as the tools take it. */
+pcl::cocone::DenoiseMode
+denoiseMode(const std::string& name)
+{
+  pcl::cocone::DenoiseMode mode = pcl::cocone::DenoiseMode::automatic;
+  if (!pcl::cocone::parseDenoiseMode(name, mode))
+    throw py::value_error("denoise = '" + name + "' is not one of 'auto', 'on', 'off'");
+  return mode;
+}
+
 // ---------------------------------------------------------------------------------
 // Progress and Ctrl-C
 
@@ -519,7 +529,7 @@ sparseNote(const pcl::CoconeReconstruction<pcl::PointXYZ>& cocone)
 Mesh
 reconstruct(const py::object& points, double theta, double rho, double alpha,
             double boundary_ratio, bool boundary_detection, bool stitching,
-            long long threads, const py::object& progress)
+            long long threads, const std::string& denoise, const py::object& progress)
 {
   using Class = pcl::CoconeReconstruction<pcl::PointXYZ>;
   const char* name = "CoconeReconstruction";
@@ -536,6 +546,7 @@ reconstruct(const py::object& points, double theta, double rho, double alpha,
   cocone.setBoundaryDetection(boundary_detection);
   cocone.setHoleStitching(stitching);
   cocone.setNumberOfThreads(threadCount(threads));
+  cocone.setDenoise(denoiseMode(denoise));
   ProgressBridge bridge(progress);
   cocone.setProgressCallback(bridge.hook());
 
@@ -630,18 +641,20 @@ estimateBoundary(BoundaryClass& estimation, const py::array& array,
 }
 
 void
-setBoundaryDiagram(BoundaryClass& estimation, double theta, long long threads)
+setBoundaryDiagram(BoundaryClass& estimation, double theta, long long threads,
+                   const std::string& denoise)
 {
   setReal(estimation, &BoundaryClass::setCoconeAngle, &BoundaryClass::getCoconeAngle,
           theta, "BoundarySampleEstimation", "setCoconeAngle", "theta",
           pcl::cocone::kCoconeAngleRange);
   estimation.setNumberOfThreads(threadCount(threads));
+  estimation.setDenoise(denoiseMode(denoise));
 }
 
 py::array_t<bool>
 boundarySamples(const py::object& points, double rho, double alpha, double theta,
                 long long band_rings, bool rim_row_completion, long long threads,
-                const py::object& progress)
+                const std::string& denoise, const py::object& progress)
 {
   const char* name = "BoundarySampleEstimation";
   BoundaryClass estimation;
@@ -653,7 +666,7 @@ boundarySamples(const py::object& points, double rho, double alpha, double theta
            &BoundaryClass::getBoundaryBandRings, band_rings, name,
            "setBoundaryBandRings", "rings", pcl::cocone::kBandRingsRange);
   estimation.setRimRowCompletion(rim_row_completion);
-  setBoundaryDiagram(estimation, theta, threads);
+  setBoundaryDiagram(estimation, theta, threads, denoise);
 
   const py::array array = pointArray(points);
   pcl::PointCloud<pcl::Boundary> output;
@@ -674,10 +687,10 @@ floatArray(const std::vector<float>& values)
 
 py::dict
 voronoiGeometry(const py::object& points, double theta, long long threads,
-                const py::object& progress)
+                const std::string& denoise, const py::object& progress)
 {
   BoundaryClass estimation;
-  setBoundaryDiagram(estimation, theta, threads);
+  setBoundaryDiagram(estimation, theta, threads, denoise);
   const py::array array = pointArray(points);
   pcl::PointCloud<pcl::Boundary> output;
   estimateBoundary(estimation, array, output, progress, "voronoi_geometry");
@@ -705,18 +718,20 @@ using DecimationClass = pcl::VoronoiDecimation<pcl::PointXYZ>;
 
 void
 setDecimation(DecimationClass& decimation, double theta, bool thin_rims,
-              long long threads)
+              long long threads, const std::string& denoise)
 {
   setReal(decimation, &DecimationClass::setCoconeAngle,
           &DecimationClass::getCoconeAngle, theta, "VoronoiDecimation",
           "setCoconeAngle", "theta", pcl::cocone::kCoconeAngleRange);
   decimation.setThinRims(thin_rims);
   decimation.setNumberOfThreads(threadCount(threads));
+  decimation.setDenoise(denoiseMode(denoise));
 }
 
 py::array_t<std::int32_t>
 decimate(const py::object& points, double rho, double theta, bool thin_rims,
-         long long relaxation_iterations, long long threads, const py::object& progress)
+         long long relaxation_iterations, long long threads, const std::string& denoise,
+         const py::object& progress)
 {
   const char* name = "VoronoiDecimation";
   DecimationClass decimation;
@@ -726,7 +741,7 @@ decimate(const py::object& points, double rho, double theta, bool thin_rims,
            &DecimationClass::getRelaxationIterations, relaxation_iterations, name,
            "setRelaxationIterations", "iterations",
            pcl::cocone::kRelaxationIterationsRange);
-  setDecimation(decimation, theta, thin_rims, threads);
+  setDecimation(decimation, theta, thin_rims, threads, denoise);
   ProgressBridge bridge(progress);
   decimation.setProgressCallback(bridge.hook());
 
@@ -747,10 +762,11 @@ decimate(const py::object& points, double rho, double theta, bool thin_rims,
 
 py::list
 levelsOfDetail(const py::object& points, const std::vector<double>& rhos, double theta,
-               bool thin_rims, long long threads, const py::object& progress)
+               bool thin_rims, long long threads, const std::string& denoise,
+               const py::object& progress)
 {
   DecimationClass decimation;
-  setDecimation(decimation, theta, thin_rims, threads);
+  setDecimation(decimation, theta, thin_rims, threads, denoise);
   ProgressBridge bridge(progress);
   decimation.setProgressCallback(bridge.hook());
   const py::array array = pointArray(points);
@@ -916,7 +932,11 @@ PYBIND11_MODULE(pcl_cocone, m)
   const std::string threads_doc =
       "threads : int, default 0\n"
       "    Worker threads for the per-sample work; 0 uses every core. Results do not\n"
-      "    depend on it.\n";
+      "    depend on it.\n"
+      "denoise : str, default 'auto'\n"
+      "    'auto' measures the cloud's noise and, when it is noisy (a scan), builds\n"
+      "    the Voronoi diagram on a smoothed copy; the results still index the\n"
+      "    input points. 'on' always smooths, 'off' never (docs/noise.md).\n";
   const std::string progress_doc =
       "progress : callable or None, default None\n"
       "    Called as progress(share) with the share of the run done, from 0 to 1,\n"
@@ -1059,6 +1079,7 @@ PYBIND11_MODULE(pcl_cocone, m)
         "boundary_detection"_a = cocone.getBoundaryDetection(),
         "stitching"_a = cocone.getHoleStitching(),
         "threads"_a = static_cast<long long>(cocone.getNumberOfThreads()),
+        "denoise"_a = pcl::cocone::toString(cocone.getDenoise()),
         "progress"_a = py::none(), reconstruct_doc.c_str());
 
   const std::string boundary_doc =
@@ -1098,6 +1119,7 @@ PYBIND11_MODULE(pcl_cocone, m)
         "band_rings"_a = static_cast<long long>(boundary.getBoundaryBandRings()),
         "rim_row_completion"_a = boundary.getRimRowCompletion(),
         "threads"_a = static_cast<long long>(boundary.getNumberOfThreads()),
+        "denoise"_a = pcl::cocone::toString(boundary.getDenoise()),
         "progress"_a = py::none(), boundary_doc.c_str());
 
   const std::string geometry_doc =
@@ -1122,6 +1144,7 @@ PYBIND11_MODULE(pcl_cocone, m)
   m.def("voronoi_geometry", &voronoiGeometry, "points"_a, py::kw_only(),
         "theta"_a = boundary.getCoconeAngle(),
         "threads"_a = static_cast<long long>(boundary.getNumberOfThreads()),
+        "denoise"_a = pcl::cocone::toString(boundary.getDenoise()),
         "progress"_a = py::none(), geometry_doc.c_str());
 
   const std::string rims_doc =
@@ -1158,6 +1181,7 @@ PYBIND11_MODULE(pcl_cocone, m)
         "relaxation_iterations"_a =
             static_cast<long long>(decimation.getRelaxationIterations()),
         "threads"_a = static_cast<long long>(decimation.getNumberOfThreads()),
+        "denoise"_a = pcl::cocone::toString(decimation.getDenoise()),
         "progress"_a = py::none(), decimate_doc.c_str());
 
   const std::string levels_doc =
@@ -1179,6 +1203,7 @@ PYBIND11_MODULE(pcl_cocone, m)
         "theta"_a = decimation.getCoconeAngle(),
         "thin_rims"_a = decimation.getThinRims(),
         "threads"_a = static_cast<long long>(decimation.getNumberOfThreads()),
+        "denoise"_a = pcl::cocone::toString(decimation.getDenoise()),
         "progress"_a = py::none(), levels_doc.c_str());
 
   m.def("load_points", &loadPoints, "path"_a,

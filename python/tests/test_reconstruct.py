@@ -163,3 +163,43 @@ def test_extreme_parameters_are_named_as_the_reason(sphere_points):
         mesh = pcl_cocone.reconstruct(sphere_points, alpha=0.001)
     assert "too sparse" not in mesh.report["warning"]
     assert mesh.report["too_sparse_for_boundary_detection"]
+
+
+def noisy_torus(n, sigma_in_spacings, seed=4):
+    """n area-uniform random points on a torus (R 1, r 0.35), moved along their
+    normals by Gaussian noise of sigma_in_spacings sample spacings."""
+    rng = np.random.default_rng(seed)
+    big, small = 1.0, 0.35
+    u, v = [], []
+    while len(u) < n:  # rejection by the area element (big + small cos v)
+        uu = rng.uniform(0, 2 * np.pi, 2 * n)
+        vv = rng.uniform(0, 2 * np.pi, 2 * n)
+        keep = rng.uniform(0, 1, 2 * n) < (big + small * np.cos(vv)) / (big + small)
+        u.extend(uu[keep]), v.extend(vv[keep])
+    u, v = np.array(u[:n]), np.array(v[:n])
+    normal = np.column_stack([np.cos(v) * np.cos(u), np.cos(v) * np.sin(u), np.sin(v)])
+    centre = np.column_stack([big * np.cos(u), big * np.sin(u), np.zeros(n)])
+    step = spacing(4 * np.pi ** 2 * big * small, n)
+    offset = small + rng.normal(0, sigma_in_spacings * step, n)
+    return centre + offset[:, None] * normal
+
+
+def test_denoise_reaches_the_class():
+    """'auto' smooths a noisy scan's diagram (closed torus through every point), 'off'
+    does not, a clean cloud is the same either way, and a bad name is refused."""
+    noisy = noisy_torus(20000, 0.5)
+    smoothed = pcl_cocone.reconstruct(noisy)
+    assert smoothed.report["closed"] and smoothed.report["genus"] == 1
+    assert len(smoothed.unused) == 0
+    # Unsmoothed, the noise makes most samples boundary samples.
+    with pytest.warns(RuntimeWarning, match="too sparse for boundary detection"):
+        raw = pcl_cocone.reconstruct(noisy, denoise="off")
+    assert not np.array_equal(raw.triangles, smoothed.triangles)
+    clean = sphere(3000)
+    assert np.array_equal(pcl_cocone.reconstruct(clean).triangles,
+                          pcl_cocone.reconstruct(clean, denoise="off").triangles)
+    for call in (pcl_cocone.reconstruct, pcl_cocone.boundary_samples,
+                 pcl_cocone.decimate, pcl_cocone.voronoi_geometry):
+        assert "denoise: str = 'auto'" in call.__doc__.splitlines()[0]
+        with pytest.raises(ValueError, match="denoise = 'maybe'"):
+            call(clean, denoise="maybe")
