@@ -168,6 +168,14 @@ TEST(NoisyReconstruction, RestoreRemovesCrossingsAndFillsTheirHoles)
   EXPECT_GE(topology.boundary_loops.size(), 1u);
 }
 
+/** Area-uniform random samples of \a S, as a scanner's are (not blue noise). */
+template <Shape S>
+SampledShape
+randomSample(std::size_t n, std::uint32_t seed)
+{
+  return sampleRandom(S, n, seed);
+}
+
 struct NoisyCase
 {
   Generator generate;
@@ -222,25 +230,25 @@ TEST_P(NoisyShapes, ExactTopologyThroughTheSamples)
   EXPECT_LE(hausdorff, 0.01) << label;
 }
 
-INSTANTIATE_TEST_SUITE_P(Noise, NoisyShapes,
-                         ::testing::Values(NoisyCase{sampleTorus, 100000, 0.1},
-                                           NoisyCase{sampleTorus, 100000, 0.3},
-                                           NoisyCase{sampleTorus, 100000, 0.5},
-                                           NoisyCase{sampleHemisphere, 100000, 0.1},
-                                           NoisyCase{sampleHemisphere, 100000, 0.3},
-                                           NoisyCase{sampleHemisphere, 100000, 0.5},
-                                           NoisyCase{sampleGenus3, 100000, 0.1},
-                                           NoisyCase{sampleGenus3, 100000, 0.3},
-                                           NoisyCase{sampleOpenCylinder, 100000, 0.1},
-                                           NoisyCase{sampleOpenCylinder, 100000, 0.3},
-                                           NoisyCase{sampleCube, 100000, 0.1},
-                                           NoisyCase{sampleCube, 100000, 0.3}),
-                         [](const ::testing::TestParamInfo<NoisyCase>& info) {
-                           const SampledShape name_only = info.param.generate(16, 1);
-                           return name_only.name + "_sigma" +
-                                  std::to_string(int(info.param.sigma * 100 + 0.5)) +
-                                  "percent";
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Noise, NoisyShapes,
+    ::testing::Values(NoisyCase{randomSample<Shape::torus>, 100000, 0.1},
+                      NoisyCase{randomSample<Shape::torus>, 100000, 0.3},
+                      NoisyCase{randomSample<Shape::torus>, 100000, 0.5},
+                      NoisyCase{randomSample<Shape::hemisphere>, 100000, 0.1},
+                      NoisyCase{randomSample<Shape::hemisphere>, 100000, 0.3},
+                      NoisyCase{randomSample<Shape::hemisphere>, 100000, 0.5},
+                      NoisyCase{randomSample<Shape::genus3>, 100000, 0.1},
+                      NoisyCase{randomSample<Shape::genus3>, 100000, 0.3},
+                      NoisyCase{randomSample<Shape::open_cylinder>, 100000, 0.1},
+                      NoisyCase{randomSample<Shape::open_cylinder>, 100000, 0.3},
+                      NoisyCase{randomSample<Shape::cube>, 100000, 0.1},
+                      NoisyCase{sampleCube, 100000, 0.3}),
+    [](const ::testing::TestParamInfo<NoisyCase>& info) {
+      const SampledShape name_only = info.param.generate(16, 1);
+      return name_only.name + "_sigma" +
+             std::to_string(int(info.param.sigma * 100 + 0.5)) + "percent";
+    });
 
 // Results depend on the points, not on their order or the number of threads: the
 // smoothing, the diagram and the repair see the samples in the classes' spatial order.
