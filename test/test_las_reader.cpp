@@ -6,6 +6,7 @@
 #include <pcl/cocone/io/point_io.h>
 
 #include "support/las_file.h"
+#include "support/scratch_folder.h"
 
 #include <gtest/gtest.h>
 
@@ -23,6 +24,9 @@
 
 namespace {
 
+using pcl::cocone::test::findField;
+using pcl::cocone::test::valueAt;
+
 namespace fs = std::filesystem;
 using pcl::PCLPointField;
 using pcl::cocone::test::lasFile;
@@ -33,24 +37,6 @@ using pcl::cocone::test::LasPoint;
 class LasReader : public ::testing::Test
 {
 protected:
-  void
-  SetUp() override
-  {
-    static std::atomic<int> counter{0};
-    dir_ = fs::path(::testing::TempDir()) /
-           ("pcl_cocone_las_" + std::to_string(::getpid()) + "_" +
-            std::to_string(counter++));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-
-  void
-  TearDown() override
-  {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-
   std::string
   write(const std::string& name, const std::string& bytes) const
   {
@@ -59,29 +45,9 @@ protected:
     return path;
   }
 
-  fs::path dir_;
+  pcl::cocone::test::ScratchFolder scratch_{"pcl_cocone_las_"};
+  const fs::path& dir_ = scratch_.path();
 };
-
-const PCLPointField*
-findField(const pcl::PCLPointCloud2& cloud, const std::string& name)
-{
-  for (const PCLPointField& field : cloud.fields)
-    if (field.name == name)
-      return &field;
-  return nullptr;
-}
-
-template <typename T>
-T
-valueAt(const pcl::PCLPointCloud2& cloud, std::size_t point, const std::string& name)
-{
-  const PCLPointField* field = findField(cloud, name);
-  T value{};
-  if (field)
-    std::memcpy(&value, cloud.data.data() + point * cloud.point_step + field->offset,
-                sizeof(T));
-  return value;
-}
 
 /** A few points with distinct coordinates, intensities and classes. */
 std::vector<LasPoint>

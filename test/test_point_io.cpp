@@ -2,6 +2,7 @@
 // The readers on small files written here (every format, every failure), then on the
 // real data folder when it is there.
 #include "support/data_paths.h"
+#include "support/scratch_folder.h"
 
 #include <pcl/cocone/io/point_io.h>
 #include <pcl/common/io.h>
@@ -31,6 +32,9 @@
 
 namespace {
 
+using pcl::cocone::test::findField;
+using pcl::cocone::test::valueAt;
+
 namespace fs = std::filesystem;
 using pcl::PCLPointField;
 
@@ -38,25 +42,6 @@ using pcl::PCLPointField;
 class PointIo : public ::testing::Test
 {
 protected:
-  void
-  SetUp() override
-  {
-    static std::atomic<int> counter{0};
-    dir_ = fs::path(::testing::TempDir()) /
-           ("pcl_cocone_point_io_" + std::to_string(::getpid()) + "_" +
-            std::to_string(counter++));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-
-  void
-  TearDown() override
-  {
-    std::error_code ec;
-    fs::permissions(dir_, fs::perms::owner_all, fs::perm_options::add, ec);
-    fs::remove_all(dir_, ec);
-  }
-
   std::string
   write(const std::string& name, const std::string& contents) const
   {
@@ -72,29 +57,9 @@ protected:
     return (dir_ / name).string();
   }
 
-  fs::path dir_;
+  pcl::cocone::test::ScratchFolder scratch_{"pcl_cocone_point_io_"};
+  const fs::path& dir_ = scratch_.path();
 };
-
-const PCLPointField*
-findField(const pcl::PCLPointCloud2& cloud, const std::string& name)
-{
-  for (const PCLPointField& field : cloud.fields)
-    if (field.name == name)
-      return &field;
-  return nullptr;
-}
-
-template <typename T>
-T
-valueAt(const pcl::PCLPointCloud2& cloud, std::size_t point, const std::string& name)
-{
-  const PCLPointField* field = findField(cloud, name);
-  T value{};
-  if (field)
-    std::memcpy(&value, cloud.data.data() + point * cloud.point_step + field->offset,
-                sizeof(T));
-  return value;
-}
 
 /** x, y, z of every point, checking that they are single float fields. */
 std::vector<float>

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The writers of pcl_cocone_io: what they write reads back through the library's own
 // readers as the same floats and triangles, and a write that cannot happen says why.
+#include "support/scratch_folder.h"
+
 #include <pcl/cocone/io/point_io.h>
 #include <pcl/cocone/io/writers.h>
 
@@ -33,32 +35,14 @@ namespace fs = std::filesystem;
 class Writers : public ::testing::Test
 {
 protected:
-  void
-  SetUp() override
-  {
-    static std::atomic<int> counter{0};
-    dir_ = fs::path(::testing::TempDir()) /
-           ("pcl_cocone_writers_" + std::to_string(::getpid()) + "_" +
-            std::to_string(counter++));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-
-  void
-  TearDown() override
-  {
-    std::error_code ec;
-    fs::permissions(dir_, fs::perms::owner_all, fs::perm_options::add, ec);
-    fs::remove_all(dir_, ec);
-  }
-
   std::string
   path(const std::string& name) const
   {
     return (dir_ / name).string();
   }
 
-  fs::path dir_;
+  pcl::cocone::test::ScratchFolder scratch_{"pcl_cocone_writers_"};
+  const fs::path& dir_ = scratch_.path();
 };
 
 std::string
