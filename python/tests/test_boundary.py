@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import pcl_cocone
-from conftest import spacing
+from conftest import hemisphere, spacing
 
 
 def rim_sectors(points, flags, sectors=24):
@@ -75,3 +75,25 @@ def test_theta_changes_the_cocone_radii(sphere_points):
     narrow = pcl_cocone.voronoi_geometry(sphere_points, theta=0.1)["cocone_radii"]
     wide = pcl_cocone.voronoi_geometry(sphere_points, theta=0.7)["cocone_radii"]
     assert np.median(wide) > np.median(narrow)
+
+
+@pytest.mark.parametrize("sigma", [0.1, 0.3])
+def test_noisy_hemisphere_flags_its_rim_not_its_noise(sigma):
+    """Scanner noise along the normal (sigma in sample spacings) on a random
+    hemisphere: with the default denoise='auto', at least 95% of the flags lie within
+    3 spacings of the rim and every stretch of the rim has one; as given
+    (denoise='off'), the noise itself is flagged (measured: 13% and 6% of the flags
+    near the rim, against 98.7% and 95.1% with auto)."""
+    n = 30000
+    step = spacing(2 * math.pi, n)
+    rng = np.random.default_rng(7)
+    points = hemisphere(n, seed=3) * (1 + rng.normal(0, sigma * step, n))[:, None]
+    flags = pcl_cocone.boundary_samples(points)
+    # The rim is the equator: a sample's distance to it is its height, to first order.
+    near_rim = np.abs(points[flags, 2]) <= 3 * step
+    assert near_rim.mean() >= 0.95
+    angles = np.arctan2(points[flags, 1], points[flags, 0])[near_rim]
+    sectors = np.floor((angles + math.pi) / (2 * math.pi) * 64).astype(int)
+    assert len(np.unique(sectors)) == 64
+    raw = pcl_cocone.boundary_samples(points, denoise="off")
+    assert (np.abs(points[raw, 2]) <= 3 * step).mean() < 0.5
