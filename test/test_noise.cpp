@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <iostream>
 #include <string>
+#include <random>
 #include <vector>
 
 namespace {
@@ -71,6 +72,31 @@ TEST(NoiseEstimate, TellsCleanFromNoisy)
       EXPECT_GT(noisy_03, 0.6 * 0.3) << shape.name << " " << n;
       EXPECT_LT(noisy_03, 1.1 * 0.3) << shape.name << " " << n;
     }
+}
+
+// Samples too coarse for their surface to be seen at the scale of 32 neighbours (a
+// sparse knot's neighbourhoods wrap its tube) and samples filling a volume are no
+// patches of a surface: they measure no noise, and are left as given.
+TEST(NoiseEstimate, CoarseOrSolidCloudsMeasureNothing)
+{
+  for (const std::size_t n : {600u, 1000u}) {
+    const SampledShape knot = sampleRandom(Shape::trefoil_knot, n, 2);
+    EXPECT_EQ(pcl::cocone::estimateNoise(knot.points).relative_noise, 0) << n;
+  }
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  std::vector<Eigen::Vector3d> ball;
+  while (ball.size() < 5000) {
+    const Eigen::Vector3d p(uniform(random), uniform(random), uniform(random));
+    if (p.norm() <= 1)
+      ball.push_back(p);
+  }
+  EXPECT_EQ(pcl::cocone::estimateNoise(ball).relative_noise, 0);
+  // A torus with noise of a whole spacing is still a surface, and noisy.
+  EXPECT_GT(pcl::cocone::estimateNoise(
+                withGaussianNoise(sampleRandom(Shape::torus, 20000, 2), 1.0).points)
+                .relative_noise,
+            2 * kNoiseThreshold);
 }
 
 // The automatic switch of the diagram: clean samples are used as given, noisy ones

@@ -574,15 +574,11 @@ TEST_F(Tools, ReconstructionOfTooSparseCloudSaysWhy)
     return path(name).string();
   };
 
-  // 1000 and 600 samples: the closed tube, and a note on stdout. The 600 samples as
-  // given: so sparse a tube (a neighbourhood of 32 samples wraps a good part of it)
-  // measures as noise of 0.74 spacings, and -denoise auto would smooth it into an
-  // open tube (docs/noise.md, what is left).
+  // 1000 and 600 samples: the closed tube, and a note on stdout.
   for (const std::size_t n : {1000, 600}) {
-    Args args = {knotFile(n), path("knot" + std::to_string(n) + ".ply").string()};
-    if (n == 600)
-      args.insert(args.end(), {"-denoise", "off"});
-    const ToolRun some = run(kReconstruction, args);
+    const ToolRun some =
+        run(kReconstruction,
+            {knotFile(n), path("knot" + std::to_string(n) + ".ply").string()});
     expectSuccess(some);
     EXPECT_NE(some.out.find("note: "), std::string::npos) << some.out;
     EXPECT_NE(some.out.find("boundary samples: the cloud is too sparse"),

@@ -79,6 +79,9 @@ struct LocalQuadric
   Eigen::Matrix<double, 6, 1>
       coefficients;    // h = c0 + c1 s + c2 t + c3 s^2 + c4 s t + c5 t^2
   double residual = 0; // RMS distance from the quadric (10 degrees of freedom)
+  /** The smallest over the middle eigenvalue of the neighbourhood's covariance: near 0
+   * for a patch of a surface, near 1 for samples that fill a volume. */
+  double thickness = 0;
 
   double
   height(double s, double t) const
@@ -115,6 +118,9 @@ fitQuadric(const std::vector<Eigen::Vector3d>& positions, const std::uint32_t* i
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
   if (eigen.info() != Eigen::Success)
     return fit;
+  if (!(eigen.eigenvalues()[1] > 0))
+    return fit; // the samples lie along a line
+  fit.thickness = eigen.eigenvalues()[0] / eigen.eigenvalues()[1];
   fit.origin = centroid;
   fit.n = eigen.eigenvectors().col(0);
   fit.v = eigen.eigenvectors().col(1);
@@ -178,7 +184,8 @@ probeNoise(const std::vector<Eigen::Vector3d>& positions, const std::uint32_t* i
 {
   const LocalQuadric near = fitQuadric(positions, ids, kNoiseNeighbours);
   const LocalQuadric wide = fitQuadric(positions, ids, kMaxFitPoints);
-  if (!near.valid || !wide.valid || !(wide.scale > near.scale))
+  if (!near.valid || !wide.valid || !(wide.scale > near.scale) ||
+      wide.thickness > kMaxPatchThickness)
     return std::numeric_limits<double>::quiet_NaN();
   const double near6 = std::pow(near.scale, 6), wide6 = std::pow(wide.scale, 6);
   const double variance =
@@ -208,7 +215,9 @@ measureNoise(const std::vector<Eigen::Vector3d>& positions,
                  relative.end());
   NoiseEstimate estimate;
   estimate.measured = relative.size();
-  if (relative.empty())
+  // Most neighbourhoods are no patch of a surface: the cloud is too coarse for its
+  // surface to be seen at this scale, and smoothing would only fold it further.
+  if (relative.empty() || 2 * relative.size() < probe_count)
     return estimate;
   const auto middle =
       relative.begin() + static_cast<std::ptrdiff_t>(
