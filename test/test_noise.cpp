@@ -35,18 +35,6 @@ using Points = std::vector<Eigen::Vector3d>;
 
 using Generator = SampledShape (*)(std::size_t, std::uint32_t);
 
-/** The diagonal of the points' bounding box. */
-double
-diagonal(const Points& points)
-{
-  Eigen::Vector3d low = points.front(), high = points.front();
-  for (const Eigen::Vector3d& p : points) {
-    low = low.cwiseMin(p);
-    high = high.cwiseMax(p);
-  }
-  return (high - low).norm();
-}
-
 // Exact samples measure far below the threshold, noise of 0.1 spacings and more far
 // above it, whatever the shape (smooth, creased, open) and the size.
 TEST(NoiseEstimate, TellsCleanFromNoisy)
@@ -242,7 +230,8 @@ TEST_P(NoisyShapes, ExactTopologyThroughTheSamples)
     to_surface = std::max(to_surface, shape.distance_to_surface(p));
   const SampledShape truth = c.generate(c.samples / 4, 5);
   const double to_mesh = distancesToMesh(truth.points, points, triangles).max;
-  const double hausdorff = std::max(to_surface, to_mesh) / diagonal(truth.points);
+  const double hausdorff =
+      std::max(to_surface, to_mesh) / boundingBoxDiagonal(truth.points);
   std::cout << "[ measured ] " << label << ": " << topology.boundary_loops.size()
             << " loops, " << topology.components << " components, genus "
             << topology.genus() << ", " << 100 * used << "% used, Hausdorff "

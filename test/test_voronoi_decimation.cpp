@@ -108,17 +108,6 @@ subCloud(const Cloud& cloud, const pcl::Indices& indices)
   return out;
 }
 
-double
-diagonalOf(const Points& points)
-{
-  Eigen::Vector3d low = points.front(), high = points.front();
-  for (const Eigen::Vector3d& p : points) {
-    low = low.cwiseMin(p);
-    high = high.cwiseMax(p);
-  }
-  return (high - low).norm();
-}
-
 // =================================================================================
 // The FilterIndices contract
 
@@ -1207,7 +1196,7 @@ compareDecimations(const Cloud::Ptr& cloud, const std::string& label, bool same_
 {
   Comparison comparison;
   const Points points = toPoints(*cloud);
-  const double diagonal = diagonalOf(points);
+  const double diagonal = boundingBoxDiagonal(points);
   const Mesh full = reconstruct(cloud, label + " full", true);
 
   const pcl::Indices kept = decimate(cloud, 0.3);

@@ -221,6 +221,17 @@ expectValidSurface(const std::vector<Eigen::Vector3d>& points,
   return topology;
 }
 
+double
+boundingBoxDiagonal(const std::vector<Eigen::Vector3d>& points)
+{
+  Eigen::Vector3d low = points.front(), high = points.front();
+  for (const Eigen::Vector3d& p : points) {
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  return (high - low).norm();
+}
+
 } // namespace test
 } // namespace cocone
 } // namespace pcl

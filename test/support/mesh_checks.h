@@ -37,6 +37,9 @@ samplePointsOnMesh(const std::vector<Eigen::Vector3d>& points,
                    const std::vector<TriangleIndices>& triangles,
                    double per_triangle = 3);
 
+/** The diagonal of the bounding box of \a points (non-empty). */
+double boundingBoxDiagonal(const std::vector<Eigen::Vector3d>& points);
+
 /** Symmetric Hausdorff distance between two meshes, estimated with samplePointsOnMesh
  * on each side. */
 double hausdorffDistance(const std::vector<Eigen::Vector3d>& points_a,
