@@ -179,6 +179,7 @@ main(int argc, char** argv)
   bool ramp = false, intersections = false;
   std::string file;
   unsigned threads = 1;
+  unsigned tiles = 0;
   int repeat = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -202,6 +203,8 @@ main(int argc, char** argv)
     }
     else if (arg == "-threads" && has_value)
       threads = static_cast<unsigned>(std::stoul(argv[++i]));
+    else if (arg == "-tiles" && has_value)
+      tiles = static_cast<unsigned>(std::stoul(argv[++i]));
     else if (arg == "-repeat" && has_value)
       repeat = std::max(1, std::stoi(argv[++i]));
     else if (arg == "-ramp")
@@ -216,7 +219,8 @@ main(int argc, char** argv)
       std::fprintf(
           stderr,
           "usage: %s [-sizes n,n] [-seeds s,s] [-shapes a,b] [-ramp] "
-          "[-threads N] [-intersections] [-verbose] [-repeat N] [-file path]\n",
+          "[-threads N] [-tiles N] [-intersections] [-verbose] [-repeat N] [-file "
+          "path]\n",
           argv[0]);
       return 2;
     }
@@ -227,9 +231,10 @@ main(int argc, char** argv)
 
   std::printf(
       "| shape | n | seed | loops | true | spurious | true lost | closed | genus "
-      "(true) | used | non-manifold | intersections | Delaunay s | total s | xDT "
-      "| exact |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "(true) | used | non-manifold | intersections | Delaunay s | tiles | "
+      "triangulated | diagram s | total s | xDT | exact |\n");
+  std::printf(
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::fflush(stdout);
   std::size_t cases = 0, exact_cases = 0;
   for (const std::size_t n : sizes)
@@ -239,7 +244,8 @@ main(int argc, char** argv)
         // The bare Delaunay and the whole reconstruction (as the classes run it:
         // spatial order, diagram, mesher) take turns, -repeat times, and the best time
         // of each counts: a burst of load on the shared machine hits both alike.
-        double t_delaunay = 0, t_total = 0;
+        double t_delaunay = 0, t_total = 0, t_diagram = 0, share = 0;
+        unsigned tiles_used = 0;
         std::vector<Eigen::Vector3d> ordered;
         std::vector<TriangleIndices> triangles;
         ReconstructionReport report;
@@ -253,9 +259,14 @@ main(int argc, char** argv)
           ordered.assign(order.size(), Eigen::Vector3d::Zero());
           for (std::size_t k = 0; k < order.size(); ++k)
             ordered[k] = shape.points[order[k]];
-          VoronoiCocone voronoi;
-          voronoi.setNumberOfThreads(threads);
+          pcl::cocone::VoronoiParameters parameters;
+          parameters.threads = threads;
+          parameters.tiles = tiles;
+          VoronoiCocone voronoi(parameters);
           status = voronoi.compute(ordered);
+          t_diagram = secondsSince(start);
+          tiles_used = voronoi.timings().tiles;
+          share = voronoi.timings().triangulated_share;
           if (status == Status::ok)
             status = reconstructSurface(voronoi, ReconstructionParameters(), triangles,
                                         report, nullptr, &message);
@@ -288,11 +299,11 @@ main(int argc, char** argv)
         exact_cases += exact;
         std::printf(
             "| %s | %zu | %u | %zu | %zu | %zu | %zu | %s | %ld (%d) | %.4f | %zu | "
-            "%s | %.2f | %.2f | %.2f | %s |\n",
+            "%s | %.2f | %u | %.2f | %.2f | %.2f | %.2f | %s |\n",
             shapeName(which), n, seed, loops, expected, spurious, lost,
             closed ? "yes" : "no", genus, shape.genus, used,
-            topology.non_manifold_edges, crossing.c_str(), t_delaunay, t_total,
-            t_total / t_delaunay, exact ? "yes" : "NO");
+            topology.non_manifold_edges, crossing.c_str(), t_delaunay, tiles_used,
+            share, t_diagram, t_total, t_total / t_delaunay, exact ? "yes" : "NO");
         std::fflush(stdout);
       }
   std::printf("\nexact topology: %zu of %zu\n", exact_cases, cases);

@@ -48,6 +48,7 @@ commandLine()
            "also write an rgb field: red for boundary samples, grey for the others, so "
            "that pcl_viewer shows them as in the paper's figure 4"),
        denoiseOption(),
+       tilesOption(),
        threadsOption(),
        verboseOption()});
 }
@@ -63,6 +64,7 @@ compute(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLine& 
   estimation.setBoundaryBandRings(cmd.count("-band"));
   estimation.setRimRowCompletion(!cmd.flag("-no_rim_completion"));
   estimation.setNumberOfThreads(cmd.count("-threads"));
+  estimation.setNumberOfTiles(static_cast<unsigned>(cmd.count("-tiles")));
   estimation.setDenoise(denoiseMode(cmd));
   estimation.setProgressCallback(terminalProgress());
   if (cmd.verbose())

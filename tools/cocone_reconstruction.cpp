@@ -46,6 +46,7 @@ commandLine()
            "smooth surfaces only"),
        flagOption("-no_stitch", "leave every hole open"),
        denoiseOption(),
+       tilesOption(),
        threadsOption(),
        verboseOption()});
 }
@@ -97,6 +98,7 @@ reconstruct(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLi
   cocone.setBoundaryDetection(!cmd.flag("-no_boundary"));
   cocone.setHoleStitching(!cmd.flag("-no_stitch"));
   cocone.setNumberOfThreads(cmd.count("-threads"));
+  cocone.setNumberOfTiles(static_cast<unsigned>(cmd.count("-tiles")));
   cocone.setDenoise(denoiseMode(cmd));
   cocone.setProgressCallback(terminalProgress());
   if (cmd.verbose())

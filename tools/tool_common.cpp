@@ -264,6 +264,19 @@ threadsOption()
 }
 
 Option
+tilesOption()
+{
+  return {"-tiles",
+          ValueKind::integer,
+          "N",
+          "build the Voronoi diagram in N tiles run in parallel, each with a halo that "
+          "makes its stars exact: the output is the same for any N (docs/scaling.md)",
+          0,
+          "0 = automatic",
+          ParameterRange{0, 1u << 20, false, false}};
+}
+
+Option
 denoiseOption()
 {
   Option option;

@@ -103,6 +103,8 @@ Option ratioBoundOption(double default_value, const std::string& help);
 Option coconeAngleOption();
 Option normalAngleOption();
 Option threadsOption();
+/** \brief "-tiles N": the tile count of the Voronoi diagram (0: automatic). */
+Option tilesOption();
 Option denoiseOption();
 Option verboseOption();
 /** \} */

@@ -43,6 +43,7 @@ commandLine()
         "stay); 0 gives DECIMATE's own points",
         10, "", pcl::cocone::kRelaxationIterationsRange},
        denoiseOption(),
+       tilesOption(),
        threadsOption(),
        verboseOption()});
 }
@@ -57,6 +58,7 @@ decimate(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLine&
   decimation.setThinRims(!cmd.flag("-keep_rims"));
   decimation.setRelaxationIterations(cmd.count("-relax"));
   decimation.setNumberOfThreads(cmd.count("-threads"));
+  decimation.setNumberOfTiles(static_cast<unsigned>(cmd.count("-tiles")));
   decimation.setDenoise(denoiseMode(cmd));
   decimation.setProgressCallback(terminalProgress());
   if (cmd.verbose())

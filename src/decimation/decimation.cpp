@@ -187,6 +187,9 @@ runDecimate(const VoronoiCocone& voronoi, DiagramState& d, double rho, bool thin
                             const SampleIndex s = candidates[k];
                             std::vector<SampleIndex>& list = adjacency[s];
                             d.stars.appendNeighbours(s, seen, list);
+                            // The stars' cell order follows the triangulation's thread
+                            // schedule: sorted, the clipping rounds the same every run.
+                            std::sort(list.begin(), list.end());
                             compact(list, s, alive);
                             const CoconeFrame frame = frame_of(s);
                             if (!frame.cut)

@@ -62,13 +62,13 @@ struct SiteGraph
       input.emplace_back(detail::Point(p.x(), p.y(), p.z()),
                          static_cast<SampleIndex>(k));
     }
-    detail::Delaunay dt(input.begin(), input.end());
+    detail::SequentialDelaunay dt(input.begin(), input.end());
     // Per vertex through its incident cells (CGAL's edge iterator, which circulates
     // around every edge to name it once, took a quarter of the bunny's decimation).
     offsets.assign(count + 1, 0);
     neighbours.clear();
-    std::vector<detail::VertexHandle> adjacent;
-    std::vector<detail::VertexHandle> vertex_of(count);
+    std::vector<detail::SequentialDelaunay::Vertex_handle> adjacent;
+    std::vector<detail::SequentialDelaunay::Vertex_handle> vertex_of(count);
     for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
       vertex_of[v->info()] = v;
     // Generators at the same point share a vertex (CGAL keeps one of them). The others
@@ -78,7 +78,7 @@ struct SiteGraph
     std::vector<std::pair<std::uint32_t, std::uint32_t>> guests; // (host, guest)
     for (std::size_t k = 0; k < count; ++k) {
       host[k] = static_cast<std::uint32_t>(k);
-      if (vertex_of[k] == detail::VertexHandle()) {
+      if (vertex_of[k] == detail::SequentialDelaunay::Vertex_handle()) {
         const Eigen::Vector3d& p = position[k];
         host[k] = dt.nearest_vertex(detail::Point(p.x(), p.y(), p.z()))->info();
         guests.emplace_back(host[k], static_cast<std::uint32_t>(k));
@@ -89,7 +89,7 @@ struct SiteGraph
       const std::uint32_t h = host[k];
       adjacent.clear();
       dt.finite_adjacent_vertices(vertex_of[h], std::back_inserter(adjacent));
-      for (const detail::VertexHandle& w : adjacent)
+      for (const detail::SequentialDelaunay::Vertex_handle& w : adjacent)
         neighbours.push_back(w->info());
       if (h != k)
         neighbours.push_back(h);

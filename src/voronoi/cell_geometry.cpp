@@ -24,12 +24,21 @@ namespace detail {
 
 namespace {
 
-/** The circumcenter of a finite cell (its Voronoi vertex). */
+/** A cell's samples in ascending order (kNoSample, the infinite vertex, last): the
+ * name of the cell in every tile, whatever its number there. */
+using CellKey = std::array<SampleIndex, 4>;
+
+/** The circumcenter of the finite cell \a c (its Voronoi vertex), from its vertices in
+ * ascending sample order, so that it rounds the same in every tile. \a by_sample holds
+ * the cell's (sample, vertex position in c) pairs in that order. */
 Eigen::Vector3d
-circumcenter(CellHandle c)
+circumcenter(CellHandle c,
+             const std::array<std::pair<SampleIndex, SampleIndex>, 4>& by_sample)
 {
-  const Point center = CGAL::circumcenter(c->vertex(0)->point(), c->vertex(1)->point(),
-                                          c->vertex(2)->point(), c->vertex(3)->point());
+  const auto at = [&](int j) -> const Point& {
+    return c->vertex(static_cast<int>(by_sample[j].second))->point();
+  };
+  const Point center = CGAL::circumcenter(at(0), at(1), at(2), at(3));
   return {center.x(), center.y(), center.z()};
 }
 
@@ -39,6 +48,8 @@ circumcenter(CellHandle c)
 struct CellTable
 {
   std::vector<std::array<SampleIndex, 4>> samples; // kNoSample: the infinite vertex
+  std::vector<CellKey> keys; // the samples, ascending: orders cells across tiles
+  const std::vector<SampleIndex>* sample_of = nullptr;  // local vertex -> sample
   std::vector<std::array<std::uint32_t, 4>> neighbours; // the cell across facet i
   std::vector<Eigen::Vector3d> centers; // circumcenters of the finite cells
   std::size_t finite = 0;
@@ -56,6 +67,13 @@ struct CellTable
     const std::array<SampleIndex, 4>& v = samples[k];
     assert(v[0] == s || v[1] == s || v[2] == s || v[3] == s);
     return v[0] == s ? 0 : v[1] == s ? 1 : v[2] == s ? 2 : 3;
+  }
+
+  /** Whether cell \a a comes before cell \a b in the order every tile agrees on. */
+  bool
+  before(std::uint32_t a, std::uint32_t b) const
+  {
+    return keys[a] < keys[b];
   }
 
   /** The facet of cell \a k shared with its neighbour \a n. */
@@ -85,9 +103,14 @@ hullFacetNormal(const CellTable& cells, const std::vector<Eigen::Vector3d>& poin
                 std::uint32_t k, int i)
 {
   const std::array<SampleIndex, 4>& v = cells.samples[k];
-  const Eigen::Vector3d& a = points[v[(i + 1) & 3]];
-  const Eigen::Vector3d& b = points[v[(i + 2) & 3]];
-  const Eigen::Vector3d& d = points[v[(i + 3) & 3]];
+  // The facet's vertices in ascending order: the same rounding in every tile.
+  std::array<SampleIndex, 3> f = {v[(i + 1) & 3], v[(i + 2) & 3], v[(i + 3) & 3]};
+  const std::vector<SampleIndex>& sample_of = *cells.sample_of;
+  std::sort(f.begin(), f.end(),
+            [&](SampleIndex a, SampleIndex b) { return sample_of[a] < sample_of[b]; });
+  const Eigen::Vector3d& a = points[f[0]];
+  const Eigen::Vector3d& b = points[f[1]];
+  const Eigen::Vector3d& d = points[f[2]];
   Eigen::Vector3d normal = (b - a).cross(d - a);
   // Outward: away from the vertex of k opposite the facet.
   if (normal.dot(points[v[i]] - a) > 0)
@@ -104,24 +127,39 @@ computePoles(const CellTable& cells, const std::vector<Eigen::Vector3d>& points,
              const std::uint32_t* star_end, CellGeometry& geometry)
 {
   const Eigen::Vector3d& p = points[s];
+  // Ties and sums go in the cross-tile cell order (CellTable::before), not in the
+  // star's, which differs from tile to tile: the same bits in every tile.
+  std::array<std::pair<std::uint32_t, Eigen::Vector3d>, 16> hull_normals;
+  std::size_t hull_count = 0;
   Eigen::Vector3d hull_normal_sum = Eigen::Vector3d::Zero();
   double farthest2 = -1;
+  std::uint32_t farthest = 0;
   geometry.unbounded = false;
   for (const std::uint32_t* c = star_begin; c != star_end; ++c) {
     if (!cells.isFinite(*c)) {
       // The finite facet of an infinite cell is a convex-hull triangle at p.
       geometry.unbounded = true;
       const std::uint32_t inside = cells.neighbours[*c][cells.indexOf(*c, kNoSample)];
-      hull_normal_sum +=
+      const Eigen::Vector3d normal =
           hullFacetNormal(cells, points, inside, cells.facetTowards(inside, *c));
+      if (hull_count < hull_normals.size())
+        hull_normals[hull_count++] = {*c, normal};
+      else
+        hull_normal_sum += normal; // more than 16 hull facets at one sample: rare
       continue;
     }
     const double d2 = (cells.centers[*c] - p).squaredNorm();
-    if (d2 > farthest2) {
+    if (d2 > farthest2 || (d2 == farthest2 && cells.before(*c, farthest))) {
       farthest2 = d2;
+      farthest = *c;
       geometry.positive_pole = cells.centers[*c];
     }
   }
+  std::sort(
+      hull_normals.begin(), hull_normals.begin() + hull_count,
+      [&](const auto& a, const auto& b) { return cells.before(a.first, b.first); });
+  for (std::size_t k = 0; k < hull_count; ++k)
+    hull_normal_sum += hull_normals[k].second;
   if (geometry.unbounded) {
     const double length = hull_normal_sum.norm();
     if (length > 1e-12)
@@ -137,6 +175,7 @@ computePoles(const CellTable& cells, const std::vector<Eigen::Vector3d>& points,
   }
 
   double negative2 = -1;
+  std::uint32_t negative = 0;
   for (const std::uint32_t* c = star_begin; c != star_end; ++c) {
     if (!cells.isFinite(*c))
       continue;
@@ -144,8 +183,9 @@ computePoles(const CellTable& cells, const std::vector<Eigen::Vector3d>& points,
     if (to_center.dot(geometry.pole_vector) >= 0)
       continue;
     const double d2 = to_center.squaredNorm();
-    if (d2 > negative2) {
+    if (d2 > negative2 || (d2 == negative2 && cells.before(*c, negative))) {
       negative2 = d2;
+      negative = *c;
       geometry.negative_pole = to_center + p;
     }
   }
@@ -158,8 +198,9 @@ computePoles(const CellTable& cells, const std::vector<Eigen::Vector3d>& points,
 
 /** The cocone radius of sample \a s for the unit axis \a axis. Every Voronoi edge of
  * its cell is the dual of a Delaunay facet (c, i) of the star; each is visited once,
- * from its finite cell or from the cell of lower number (not address: the edge is
- * clipped from that side, and the rounding must not change from run to run). An edge
+ * from its finite cell or from the cell first in the cross-tile order (the edge is
+ * clipped from that side, and the rounding must not change from run to run or from
+ * tile to tile). An edge
  * that meets the cocone marks the facet: bit i of marks[c][position of s in c]. */
 double
 computeCoconeRadius(const CellTable& cells, const std::vector<Eigen::Vector3d>& points,
@@ -178,7 +219,7 @@ computeCoconeRadius(const CellTable& cells, const std::vector<Eigen::Vector3d>& 
         continue; // the facet opposite s does not contain s
       const std::uint32_t n = cells.neighbours[*c][i];
       const bool ray = !cells.isFinite(n);
-      if (!ray && n < *c)
+      if (!ray && cells.before(n, *c))
         continue; // visited from n
       const Eigen::Vector3d start = cells.centers[*c] - p;
       const Eigen::Vector3d direction =
@@ -199,12 +240,28 @@ computeCoconeRadius(const CellTable& cells, const std::vector<Eigen::Vector3d>& 
 
 } // namespace
 
-/** Circumcenters, poles, heights, radii and cocone marks of every sample, and the
- * marked triangles with their incidence lists. Clears \a dt once its cells are read. */
 void
-computeGeometry(Delaunay& dt, DiagramState& d, double sin_theta)
+computeTileGeometry(Delaunay& dt, const std::vector<Eigen::Vector3d>& points,
+                    const std::vector<std::uint32_t>& tile_of, std::uint32_t tile,
+                    double sin_theta, DiagramState& d, TileContribution& out)
 {
-  const std::size_t n = d.representative.size();
+  const auto owned = [&](SampleIndex s) {
+    return s != kNoSample && tile_of[s] == tile;
+  };
+
+  // The local vertices, numbered in the triangulation's vertex order, which is its
+  // insertion order, a spatial one: neighbouring samples share the cells of their
+  // stars. Each vertex's info becomes its local number for the tables below.
+  std::vector<SampleIndex> sample_of;
+  sample_of.reserve(dt.number_of_vertices());
+  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
+    sample_of.push_back(v->info());
+    v->info() = static_cast<SampleIndex>(sample_of.size() - 1);
+  }
+  const std::size_t m = sample_of.size();
+  const auto sample = [&](SampleIndex local) {
+    return local == kNoSample ? kNoSample : sample_of[local];
+  };
 
   // Number the cells: the finite ones in container order, then the infinite ones.
   // One pass: touching every cell is what costs at a million points.
@@ -225,55 +282,193 @@ computeGeometry(Delaunay& dt, DiagramState& d, double sin_theta)
   }
   std::vector<CellHandle>().swap(infinite_cells);
 
-  // The samples in the triangulation's vertex order, which is its insertion order, a
-  // spatial one: neighbouring samples share the cells of their stars.
-  std::vector<SampleIndex> samples_in_order;
-  samples_in_order.reserve(d.unique_count);
-  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
-    samples_in_order.push_back(v->info());
-
-  // The star of every vertex at once (cells by sample, infinite cells after the
+  // The star of every vertex at once (cells by local vertex, infinite cells after the
   // finite ones): passes over the cells instead of a search per vertex, which measured
-  // twice as slow. The samples, neighbours and circumcenter of every cell are read
-  // once, in parallel, so that these passes and the per-sample one scan flat arrays.
+  // twice as slow. The vertices, neighbours, key and circumcenter of every cell are
+  // read once, in parallel, so that these passes and the per-sample one scan flat
+  // arrays. The tables hold local vertex numbers; keys and centers, sample indices.
   CellTable cells;
+  cells.sample_of = &sample_of;
   cells.finite = finite_cells;
   cells.centers.resize(finite_cells);
   cells.samples.resize(all_cells.size());
+  cells.keys.resize(all_cells.size());
   cells.neighbours.resize(all_cells.size());
   const VertexHandle infinite = dt.infinite_vertex();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, all_cells.size(), 4096),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t k = range.begin(); k != range.end(); ++k) {
                         const CellHandle c = all_cells[k];
+                        std::array<std::pair<SampleIndex, SampleIndex>, 4> by_sample;
                         for (int j = 0; j < 4; ++j) {
                           const VertexHandle v = c->vertex(j);
-                          cells.samples[k][j] = v == infinite ? kNoSample : v->info();
+                          const SampleIndex local =
+                              v == infinite ? kNoSample : v->info();
+                          cells.samples[k][j] = local;
+                          by_sample[j] = {sample(local), SampleIndex(j)};
                           cells.neighbours[k][j] = c->neighbor(j)->cellIndex();
                         }
+                        std::sort(by_sample.begin(), by_sample.end());
+                        for (int j = 0; j < 4; ++j)
+                          cells.keys[k][j] = by_sample[j].first;
                         if (k < finite_cells)
-                          cells.centers[k] = circumcenter(c);
+                          cells.centers[k] = circumcenter(c, by_sample);
                       }
                     });
   // The table holds all that is read from here on: CGAL's triangulation, the largest
-  // structure of the whole run, goes before the star lists are made.
+  // structure of the tile, goes before the star lists are made.
   std::vector<CellHandle>().swap(all_cells);
   dt.clear();
-  // Star lists in cell order, filled by a few blocks of cells at once: each block
-  // counts its cells per sample, so it knows where in each list its own cells go.
+
+  // Star lists by local vertex (counting sort by cell number).
+  std::vector<std::uint32_t> star_offsets(m + 1, 0);
+  for (const std::array<SampleIndex, 4>& cell : cells.samples)
+    for (const SampleIndex v : cell)
+      if (v != kNoSample)
+        ++star_offsets[v + 1];
+  for (std::size_t v = 0; v < m; ++v)
+    star_offsets[v + 1] += star_offsets[v];
+  std::vector<std::uint32_t> star_cells(star_offsets[m]);
+  {
+    std::vector<std::uint32_t> cursor(star_offsets.begin(), star_offsets.end() - 1);
+    for (std::size_t k = 0; k < cells.samples.size(); ++k)
+      for (const SampleIndex v : cells.samples[k])
+        if (v != kNoSample)
+          star_cells[cursor[v]++] = static_cast<std::uint32_t>(k);
+  }
+  std::vector<SampleIndex> own_vertices;
+  for (std::size_t v = 0; v < m; ++v)
+    if (owned(sample_of[v]))
+      own_vertices.push_back(static_cast<SampleIndex>(v));
+
+  // The points as the tables name them: by local vertex.
+  std::vector<Eigen::Vector3d> local_points(m);
+  for (std::size_t v = 0; v < m; ++v)
+    local_points[v] = points[sample_of[v]];
+
+  // marks[c][j] bit i: vertex j of cell c marks facet i of c. Only the thread handling
+  // vertex j writes that byte, so no synchronisation is needed.
+  std::vector<std::array<std::uint8_t, 4>> marks(finite_cells, {0, 0, 0, 0});
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, own_vertices.size(), 256),
+      [&](const tbb::blocked_range<std::size_t>& range) {
+        CellGeometry geometry;
+        for (std::size_t k = range.begin(); k != range.end(); ++k) {
+          const SampleIndex v = own_vertices[k];
+          std::uint32_t* star_begin = star_cells.data() + star_offsets[v];
+          std::uint32_t* star_end = star_cells.data() + star_offsets[v + 1];
+          std::sort(star_begin, star_end, [&](std::uint32_t a, std::uint32_t b) {
+            return cells.before(a, b);
+          });
+          computePoles(cells, local_points, v, star_begin, star_end, geometry);
+          const SampleIndex s = sample_of[v];
+          // Poles are kept in the frame of the samples, not of the local table.
+          d.pole_vector[s] = geometry.pole_vector;
+          d.positive_pole[s] = geometry.positive_pole;
+          d.negative_pole[s] = geometry.negative_pole;
+          d.height[s] = geometry.height;
+          d.unbounded[s] = geometry.unbounded ? 1 : 0;
+          d.radius[s] =
+              computeCoconeRadius(cells, local_points, v, star_begin, star_end,
+                                  geometry.pole_vector, sin_theta, marks);
+        }
+      });
+
+  // The marks of this tile's samples, each facet from the cell that owns it (the same
+  // rule computeCoconeRadius uses), under its ascending vertices: joinTiles merges
+  // the marks the tiles of the other vertices give the same triangle. Most facets
+  // are marked by none of their vertices: skipped on the marks alone. Blocks of cells
+  // in parallel, joined in cell order.
+  constexpr std::size_t kBlocks = 8;
+  const std::size_t block_size = (finite_cells + kBlocks - 1) / kBlocks;
+  std::vector<std::vector<MarkedTriangle>> found(kBlocks);
+  tbb::parallel_for(std::size_t(0), kBlocks, [&](std::size_t b) {
+    const std::size_t first = std::min(b * block_size, finite_cells);
+    const std::size_t last = std::min(first + block_size, finite_cells);
+    for (std::size_t k = first; k < last; ++k)
+      for (int i = 0; i < 4; ++i) {
+        std::uint8_t bits = 0;
+        std::array<std::pair<SampleIndex, bool>, 3> vertex;
+        for (int j = 0, at = 0; j < 4; ++j) {
+          if (j == i)
+            continue;
+          const bool marked = (marks[k][j] >> i) & 1u;
+          vertex[at++] = {sample(cells.samples[k][j]), marked};
+          bits |= marked ? 1 : 0;
+        }
+        if (bits == 0)
+          continue;
+        const std::uint32_t nb = cells.neighbours[k][i];
+        if (cells.isFinite(nb) && cells.before(nb, static_cast<std::uint32_t>(k)))
+          continue;
+        std::sort(vertex.begin(), vertex.end());
+        MarkedTriangle triangle;
+        triangle.marked_by = 0;
+        for (int j = 0; j < 3; ++j) {
+          triangle.vertex[j] = vertex[j].first;
+          if (vertex[j].second)
+            triangle.marked_by |= static_cast<std::uint8_t>(1u << j);
+        }
+        found[b].push_back(triangle);
+      }
+  });
+  std::size_t total = 0;
+  for (const std::vector<MarkedTriangle>& block : found)
+    total += block.size();
+  out.marks.reserve(total);
+  for (std::vector<MarkedTriangle>& block : found) {
+    out.marks.insert(out.marks.end(), block.begin(), block.end());
+    std::vector<MarkedTriangle>().swap(block);
+  }
+  // The cells this tile owns: those whose smallest sample is its own; all of them
+  // when the tile is the whole cloud.
+  if (own_vertices.size() == m) {
+    out.cells = std::move(cells.keys);
+  }
+  else {
+    for (const CellKey& key : cells.keys)
+      if (owned(key[0]))
+        out.cells.push_back(key);
+  }
+}
+
+void
+joinTiles(std::vector<TileContribution>& tiles, DiagramState& d)
+{
+  const std::size_t n = d.representative.size();
+
+  // Cells: each comes from exactly one tile; their order does not matter (every query
+  // on the stars sorts what it hands out).
+  std::vector<CellKey> all_cells;
+  if (tiles.size() == 1) {
+    all_cells = std::move(tiles[0].cells);
+  }
+  else {
+    std::size_t count = 0;
+    for (const TileContribution& tile : tiles)
+      count += tile.cells.size();
+    all_cells.reserve(count);
+    for (TileContribution& tile : tiles) {
+      all_cells.insert(all_cells.end(), tile.cells.begin(), tile.cells.end());
+      std::vector<CellKey>().swap(tile.cells);
+    }
+  }
+
+  // Stars (CSR by sample, cells ascending), filled by a few blocks of cells at once:
+  // each block counts its cells per sample, so it knows where in each list its own
+  // cells go.
   constexpr std::size_t kBlocks = 4;
-  const std::size_t block_size = (cells.samples.size() + kBlocks - 1) / kBlocks;
-  // Block b of the cells [0, count).
-  const auto blockRange = [&](std::size_t b, std::size_t count) {
-    return std::make_pair(std::min(b * block_size, count),
-                          std::min((b + 1) * block_size, count));
+  const std::size_t block_size = (all_cells.size() + kBlocks - 1) / kBlocks;
+  const auto blockRange = [&](std::size_t b) {
+    return std::make_pair(std::min(b * block_size, all_cells.size()),
+                          std::min((b + 1) * block_size, all_cells.size()));
   };
   std::vector<std::vector<std::uint32_t>> cursor(kBlocks);
   tbb::parallel_for(std::size_t(0), kBlocks, [&](std::size_t b) {
     cursor[b].assign(n, 0);
-    const auto [first, last] = blockRange(b, cells.samples.size());
+    const auto [first, last] = blockRange(b);
     for (std::size_t k = first; k < last; ++k)
-      for (const SampleIndex s : cells.samples[k])
+      for (const SampleIndex s : all_cells[k])
         if (s != kNoSample)
           ++cursor[b][s];
   });
@@ -286,88 +481,65 @@ computeGeometry(Delaunay& dt, DiagramState& d, double sin_theta)
   }
   std::vector<std::uint32_t> star_cells(star_offsets[n]);
   tbb::parallel_for(std::size_t(0), kBlocks, [&](std::size_t b) {
-    const auto [first, last] = blockRange(b, cells.samples.size());
+    const auto [first, last] = blockRange(b);
     for (std::size_t k = first; k < last; ++k)
-      for (const SampleIndex s : cells.samples[k])
+      for (const SampleIndex s : all_cells[k])
         if (s != kNoSample)
           star_cells[cursor[b][s]++] = static_cast<std::uint32_t>(k);
   });
   std::vector<std::vector<std::uint32_t>>().swap(cursor);
-
-  d.pole_vector.assign(n, Eigen::Vector3d::Zero());
-  d.positive_pole.assign(n, Eigen::Vector3d::Zero());
-  d.negative_pole.assign(n, Eigen::Vector3d::Zero());
-  d.height.assign(n, std::numeric_limits<double>::quiet_NaN());
-  d.radius.assign(n, std::numeric_limits<double>::quiet_NaN());
-  d.unbounded.assign(n, 0);
-
-  // marks[c][j] bit i: vertex j of cell c marks facet i of c. Only the thread handling
-  // vertex j writes that byte, so no synchronisation is needed.
-  std::vector<std::array<std::uint8_t, 4>> marks(finite_cells, {0, 0, 0, 0});
-  const std::vector<Eigen::Vector3d>& points = d.centered; // the vertices' coordinates
-  tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, samples_in_order.size(), 512),
-      [&](const tbb::blocked_range<std::size_t>& range) {
-        CellGeometry geometry;
-        for (std::size_t k = range.begin(); k != range.end(); ++k) {
-          const SampleIndex s = samples_in_order[k];
-          const std::uint32_t* star_begin = star_cells.data() + star_offsets[s];
-          const std::uint32_t* star_end = star_cells.data() + star_offsets[s + 1];
-          computePoles(cells, points, s, star_begin, star_end, geometry);
-          d.pole_vector[s] = geometry.pole_vector;
-          d.positive_pole[s] = geometry.positive_pole;
-          d.negative_pole[s] = geometry.negative_pole;
-          d.height[s] = geometry.height;
-          d.unbounded[s] = geometry.unbounded ? 1 : 0;
-          d.radius[s] = computeCoconeRadius(cells, points, s, star_begin, star_end,
-                                            geometry.pole_vector, sin_theta, marks);
-        }
-      });
-
-  // Collect the marked triangles, each from the cell that owns its facet (the same
-  // rule computeCoconeRadius uses), in cell order: deterministic.
-  // Most facets are marked by none of their vertices: those are skipped on the marks
-  // alone, before their neighbouring cell is looked up. Blocks of cells in parallel,
-  // joined in cell order.
-  std::vector<std::vector<MarkedTriangle>> found(kBlocks);
-  tbb::parallel_for(std::size_t(0), kBlocks, [&](std::size_t b) {
-    const auto [first, last] = blockRange(b, finite_cells);
-    for (std::size_t k = first; k < last; ++k)
-      for (int i = 0; i < 4; ++i) {
-        MarkedTriangle triangle;
-        triangle.marked_by = 0;
-        for (int m = 0; m < 3; ++m) {
-          const int j = (i + 1 + m) & 3;
-          triangle.vertex[m] = cells.samples[k][j];
-          if ((marks[k][j] >> i) & 1u)
-            triangle.marked_by |= static_cast<std::uint8_t>(1u << m);
-        }
-        if (triangle.marked_by == 0)
-          continue;
-        const std::uint32_t nb = cells.neighbours[k][i];
-        if (cells.isFinite(nb) && nb < k)
-          continue;
-        found[b].push_back(triangle);
-      }
-  });
-  d.triangles.clear();
-  std::size_t total = 0;
-  for (const std::vector<MarkedTriangle>& block : found)
-    total += block.size();
-  d.triangles.reserve(total);
-  for (std::vector<MarkedTriangle>& block : found) {
-    d.triangles.insert(d.triangles.end(), block.begin(), block.end());
-    std::vector<MarkedTriangle>().swap(block);
-  }
-
-  // Stitching and decimation ask the triangulation for neighbours later: they get the
-  // cells' samples and the stars, not the rest of the table.
-  std::vector<std::array<std::uint32_t, 4>>().swap(cells.neighbours);
-  std::vector<Eigen::Vector3d>().swap(cells.centers);
-  std::vector<std::array<std::uint8_t, 4>>().swap(marks);
-  d.stars.cell_samples = std::move(cells.samples);
+  d.stars.cell_samples = std::move(all_cells);
   d.stars.offsets = std::move(star_offsets);
   d.stars.cells = std::move(star_cells);
+  // Marked triangles: the marks of one triangle's vertices may come from up to three
+  // tiles; grouped by smallest vertex, sorted, merged.
+  std::vector<std::uint32_t> group(n + 1, 0);
+  for (const TileContribution& tile : tiles)
+    for (const MarkedTriangle& t : tile.marks)
+      ++group[t.vertex[0] + 1];
+  for (std::size_t i = 0; i < n; ++i)
+    group[i + 1] += group[i];
+  std::vector<MarkedTriangle> marks(group[n]);
+  {
+    std::vector<std::uint32_t> cursor(group.begin(), group.end() - 1);
+    for (TileContribution& tile : tiles) {
+      for (const MarkedTriangle& t : tile.marks)
+        marks[cursor[t.vertex[0]]++] = t;
+      std::vector<MarkedTriangle>().swap(tile.marks);
+    }
+  }
+  std::vector<std::uint32_t> merged(n + 1, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t s = range.begin(); s != range.end(); ++s) {
+                        const auto first = marks.begin() + group[s];
+                        const auto last = marks.begin() + group[s + 1];
+                        std::sort(first, last,
+                                  [](const MarkedTriangle& a, const MarkedTriangle& b) {
+                                    return a.vertex < b.vertex;
+                                  });
+                        auto out = first;
+                        for (auto t = first; t != last; ++t) {
+                          if (out != first && (out - 1)->vertex == t->vertex)
+                            (out - 1)->marked_by |= t->marked_by;
+                          else
+                            *out++ = *t;
+                        }
+                        merged[s + 1] = static_cast<std::uint32_t>(out - first);
+                      }
+                    });
+  for (std::size_t i = 0; i < n; ++i)
+    merged[i + 1] += merged[i];
+  d.triangles.resize(merged[n]);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t s = range.begin(); s != range.end(); ++s)
+                        std::copy(marks.begin() + group[s],
+                                  marks.begin() + group[s] +
+                                      (merged[s + 1] - merged[s]),
+                                  d.triangles.begin() + merged[s]);
+                    });
+  std::vector<MarkedTriangle>().swap(marks);
 
   // Incidence lists (CSR by sample).
   d.triangle_offsets.assign(n + 1, 0);

@@ -75,8 +75,20 @@ private:
 };
 
 using CellBase = VoronoiCellBase<Kernel>;
-using Tds = CGAL::Triangulation_data_structure_3<VertexBase, CellBase>;
+/** A triangulation filled by one thread (decimation's relaxation): CGAL's sequential
+ * data structure, faster than the concurrent one on one core. */
+using SequentialDelaunay = CGAL::Delaunay_triangulation_3<
+    Kernel, CGAL::Triangulation_data_structure_3<VertexBase, CellBase>>;
+/** CGAL's concurrent triangulation: points inserted as a range go in on every core.
+ * Its cells come out in an order that depends on the thread schedule, but the cells
+ * themselves do not (the triangulation of a point set is unique, degenerate cases
+ * decided by symbolic perturbation), and nothing read from it depends on their order
+ * (cell_geometry.h). */
+using Tds =
+    CGAL::Triangulation_data_structure_3<VertexBase, CellBase, CGAL::Parallel_tag>;
 using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, Tds>;
+/** The locks of the concurrent insertion: a grid over the points' box. */
+using DelaunayLocks = Delaunay::Lock_data_structure;
 using VertexHandle = Delaunay::Vertex_handle;
 using CellHandle = Delaunay::Cell_handle;
 

@@ -214,6 +214,23 @@ public:
     return voronoi_parameters_.denoise;
   }
 
+  /** \brief The number of tiles the Voronoi diagram is built in (see
+   * cocone::VoronoiParameters::tiles and docs/scaling.md): the tiles run in parallel,
+   * and the results are the same for any count.
+   * \param[in] tiles 0 (default): automatic; 1: untiled; any value is valid */
+  void
+  setNumberOfTiles(unsigned tiles)
+  {
+    voronoi_parameters_.tiles = tiles;
+  }
+  /** \brief Get the number of tiles (see setNumberOfTiles).
+   * \return the count; 0 means automatic */
+  unsigned
+  getNumberOfTiles() const
+  {
+    return voronoi_parameters_.tiles;
+  }
+
   /** \name Diagnostics of the last reconstruct()
    * A reconstruct() that initCompute() refuses (e.g. no input) leaves them as
    * they were. */

@@ -128,6 +128,20 @@ struct VoronoiParameters
    * measure below it and keep the results of the diagram as published); on; off. Any
    * value is valid. */
   DenoiseMode denoise = DenoiseMode::automatic;
+  /** \brief Beyond the paper (after SuperCocone and distributed Delaunay): the number
+   * of tiles the diagram is built in. The distinct samples are cut into this many tiles
+   * balanced by count; each tile is triangulated with a halo of neighbouring samples,
+   * grown until the Delaunay star of every sample of the tile is exactly its star in
+   * the whole cloud; the tiles run in parallel and their results are joined. The
+   * results do not depend on it: any tile count gives the same diagram, bit for bit.
+   * A tile gives up when its halo would exceed 3 times its own samples (plus 2048)
+   * and the diagram is then built as one tile; so it is where the Voronoi cells reach
+   * far, as they do on compact surfaces cut into small tiles (a sphere's cells all
+   * meet near its centre). 0 (default): automatic, which is one tile (the measured
+   * halos, docs/scaling.md, cost more than parallel tiles gain on one machine; the
+   * one triangulation is built on every core); 1: one tile. Any value is valid; more
+   * tiles than distinct samples count as one per sample. */
+  unsigned tiles = 0;
 };
 
 /** \brief Parameters of BOUNDARY. rho and alpha default to the paper's practical

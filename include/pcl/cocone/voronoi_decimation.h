@@ -192,6 +192,23 @@ public:
     return voronoi_parameters_.denoise;
   }
 
+  /** \brief The number of tiles the Voronoi diagram is built in (see
+   * cocone::VoronoiParameters::tiles and docs/scaling.md): the tiles run in parallel,
+   * and the results are the same for any count.
+   * \param[in] tiles 0 (default): automatic; 1: untiled; any value is valid */
+  void
+  setNumberOfTiles(unsigned tiles)
+  {
+    voronoi_parameters_.tiles = tiles;
+  }
+  /** \brief Get the number of tiles (see setNumberOfTiles).
+   * \return the count; 0 means automatic */
+  unsigned
+  getNumberOfTiles() const
+  {
+    return voronoi_parameters_.tiles;
+  }
+
   /** \brief Nested subsets for several ratio bounds from one run (up to the largest).
    * Does not change the ratio bound of setRatioBound; ignores setNegative. Fills
    * getRemovalLevels() like filter() does.

@@ -205,6 +205,14 @@ public:
     double denoise = 0;  ///< noise estimate and smoothing (0 when denoising is off)
     double delaunay = 0; ///< triangulation, duplicates included
     double geometry = 0; ///< circumcenters, poles, radii, marks, incidence lists
+    /** Tiles the diagram was built in (VoronoiParameters::tiles): 1 when untiled,
+     * also when a tiled build fell back to one tile. With tiles, #delaunay and
+     * #geometry share the wall time of the tile phase in proportion to the time each
+     * took summed over the tiles; the join of the tiles counts to #geometry. */
+    unsigned tiles = 0;
+    /** Samples triangulated summed over the tiles, over the distinct samples: 1
+     * untiled; the share of halo samples on top of it. */
+    double triangulated_share = 0;
   };
   /** \brief Durations of the last compute().
    * \return the stages' wall-clock times in seconds; all 0 before compute() or after a

@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Private: the Delaunay triangulation of one tile, with a halo grown until the stars of
+// the tile's own samples are exactly those of the whole cloud. Never installed.
+#pragma once
+
+#include "voronoi/cgal_delaunay.h"
+#include "voronoi/tiling.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace pcl {
+namespace cocone {
+namespace detail {
+
+/** How a tile's triangulation went. */
+struct TileTriangulationStats
+{
+  std::size_t owned = 0; ///< the tile's own samples
+  std::size_t local = 0; ///< samples triangulated: own plus halo
+  unsigned rounds = 0;   ///< insertion rounds (1: the first halo was enough)
+  bool complete = false; ///< false: the halo outgrew its budget, nothing is exact
+};
+
+/** Triangulates tile \a tile of \a tiling (samples at \a points) with a halo of whole
+ * leaves, grown until the star of every sample of the tile is final: every Delaunay
+ * cell incident to one has a circumball (for a cell on the convex hull: the open
+ * half-space beyond its hull facet) that holds no sample outside tile and halo. Such a
+ * cell is a cell of the triangulation of all the samples, and a star made of such
+ * cells is that sample's star in the whole triangulation: the tile's geometry equals
+ * the untiled one. The tests on balls and half-spaces are conservative (a relative
+ * margin of 1e-6 covers the rounding of the circumcenters): they may grow the halo
+ * more than needed, never less.
+ *
+ * Stops, with complete == false, once the halo would exceed \a budget samples in all,
+ * or when \a give_up returns true (checked between rounds). \a on_inserted is called
+ * with a count of samples inserted, every 65536 and at the end of each round. */
+TileTriangulationStats
+triangulateTile(const KdTiling& tiling, unsigned tile,
+                const std::vector<Eigen::Vector3d>& points,
+                const std::vector<std::uint32_t>& tile_of, std::size_t budget,
+                Delaunay& dt, const std::function<void(std::size_t)>& on_inserted,
+                const std::function<bool()>& give_up);
+
+} // namespace detail
+} // namespace cocone
+} // namespace pcl

@@ -1,0 +1,227 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Tiles with exact seams (issue 24): the diagram built in 1, 2, 7 or 64 tiles, with any
+// thread count, is the same diagram bit for bit (poles, heights, radii, marked
+// triangles, Delaunay neighbours), and the reconstruction from it the same mesh; on
+// generated shapes, sampled at random and on grids full of cospherical points, and on
+// the shared scans.
+#include "support/data_paths.h"
+#include "support/shapes.h"
+
+#include <pcl/cocone/core/reconstruction.h>
+#include <pcl/cocone/core/voronoi_cocone.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <iostream>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace {
+
+using pcl::cocone::MarkedTriangle;
+using pcl::cocone::ReconstructionParameters;
+using pcl::cocone::ReconstructionReport;
+using pcl::cocone::SampleIndex;
+using pcl::cocone::Status;
+using pcl::cocone::TriangleIndices;
+using pcl::cocone::VoronoiCocone;
+using pcl::cocone::VoronoiParameters;
+using pcl::cocone::test::Shape;
+namespace shapes = pcl::cocone::test;
+
+/** Whether two doubles are the same bits (NaN equals NaN, infinity infinity). */
+bool
+sameBits(double a, double b)
+{
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+bool
+sameBits(const Eigen::Vector3d& a, const Eigen::Vector3d& b)
+{
+  return sameBits(a.x(), b.x()) && sameBits(a.y(), b.y()) && sameBits(a.z(), b.z());
+}
+
+VoronoiCocone
+diagram(const std::vector<Eigen::Vector3d>& points, unsigned tiles, unsigned threads)
+{
+  VoronoiParameters parameters;
+  parameters.tiles = tiles;
+  parameters.threads = threads;
+  VoronoiCocone voronoi(parameters);
+  EXPECT_EQ(voronoi.compute(points), Status::ok) << voronoi.errorMessage();
+  return voronoi;
+}
+
+/** Every per-sample value, every marked triangle and every Delaunay neighbourhood of
+ * \a tiled equals that of \a whole; counts the first differences. */
+void
+expectSameDiagram(const VoronoiCocone& whole, const VoronoiCocone& tiled,
+                  const std::string& label)
+{
+  SCOPED_TRACE(label);
+  ASSERT_EQ(whole.size(), tiled.size());
+  ASSERT_EQ(whole.numUniqueSamples(), tiled.numUniqueSamples());
+  std::size_t differences = 0;
+  std::vector<SampleIndex> a, b;
+  for (SampleIndex s = 0; s < whole.size(); ++s) {
+    const bool same =
+        whole.representative(s) == tiled.representative(s) &&
+        sameBits(whole.poleVector(s), tiled.poleVector(s)) &&
+        sameBits(whole.height(s), tiled.height(s)) &&
+        sameBits(whole.coconeRadius(s), tiled.coconeRadius(s)) &&
+        whole.positivePoleAtInfinity(s) == tiled.positivePoleAtInfinity(s) &&
+        (whole.positivePoleAtInfinity(s) ||
+         sameBits(whole.positivePole(s), tiled.positivePole(s)));
+    whole.delaunayNeighbours(s, a);
+    tiled.delaunayNeighbours(s, b);
+    if ((!same || a != b) && ++differences <= 5)
+      ADD_FAILURE() << "sample " << s << " differs (same geometry: " << same
+                    << ", same neighbours: " << (a == b) << "): pole vector "
+                    << whole.poleVector(s).transpose() << " / "
+                    << tiled.poleVector(s).transpose() << ", height " << whole.height(s)
+                    << " / " << tiled.height(s) << ", radius " << whole.coconeRadius(s)
+                    << " / " << tiled.coconeRadius(s);
+  }
+  EXPECT_EQ(differences, 0u);
+  const std::vector<MarkedTriangle>& t = whole.markedTriangles();
+  const std::vector<MarkedTriangle>& u = tiled.markedTriangles();
+  ASSERT_EQ(t.size(), u.size());
+  std::size_t triangle_differences = 0;
+  for (std::size_t k = 0; k < t.size(); ++k)
+    if (t[k].vertex != u[k].vertex || t[k].marked_by != u[k].marked_by)
+      ++triangle_differences;
+  EXPECT_EQ(triangle_differences, 0u);
+}
+
+std::vector<TriangleIndices>
+mesh(const VoronoiCocone& voronoi)
+{
+  std::vector<TriangleIndices> triangles;
+  ReconstructionReport report;
+  std::string message;
+  EXPECT_EQ(pcl::cocone::reconstructSurface(voronoi, ReconstructionParameters(),
+                                            triangles, report, nullptr, &message),
+            Status::ok)
+      << message;
+  for (TriangleIndices& t : triangles)
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+  std::sort(triangles.begin(), triangles.end());
+  return triangles;
+}
+
+/** The diagram in 1 tile against \a tile_counts tiles, and the meshes from them. Tile
+ * counts up to \a must_tile_up_to must really be tiled (no fallback to one tile); the
+ * others may fall back, when a tile's halo outgrows its budget. */
+void
+expectTilingChangesNothing(const std::vector<Eigen::Vector3d>& points,
+                           const std::string& label,
+                           const std::vector<unsigned>& tile_counts,
+                           unsigned must_tile_up_to)
+{
+  const VoronoiCocone whole = diagram(points, 1, 0);
+  ASSERT_EQ(whole.timings().tiles, 1u);
+  const std::vector<TriangleIndices> whole_mesh = mesh(whole);
+  ASSERT_FALSE(whole_mesh.empty());
+  for (const unsigned tiles : tile_counts)
+    for (const unsigned threads : {1u, 2u}) {
+      const std::string run = label + ", " + std::to_string(tiles) + " tiles, " +
+                              std::to_string(threads) + " threads";
+      const VoronoiCocone tiled = diagram(points, tiles, threads);
+      std::cout << run << ": built in " << tiled.timings().tiles
+                << " tiles, triangulated share " << tiled.timings().triangulated_share
+                << "\n";
+      if (tiles <= must_tile_up_to) {
+        EXPECT_EQ(tiled.timings().tiles, tiles) << run << ": fell back to one tile";
+        EXPECT_GT(tiled.timings().triangulated_share, 1.0) << run;
+      }
+      expectSameDiagram(whole, tiled, run);
+      EXPECT_TRUE(mesh(tiled) == whole_mesh) << run << ": the meshes differ";
+    }
+}
+
+TEST(Tiles, RandomSamplesOfClosedAndOpenShapes)
+{
+  // At 20k samples the halo of 2 tiles holds 0.7 to 1 times the tile's own samples
+  // on all but the hemisphere, whose cells reach down to its centre; 7 and 64 tiles
+  // fall back to one. Either way the diagram must not change.
+  for (const Shape shape : {Shape::torus, Shape::cube, Shape::open_cylinder,
+                            Shape::monkey_saddle, Shape::hemisphere}) {
+    const shapes::SampledShape sampled = shapes::sampleRandom(shape, 20000, 3);
+    expectTilingChangesNothing(sampled.points, sampled.name, {2, 7, 64},
+                               shape == Shape::hemisphere ? 0 : 2);
+  }
+}
+
+TEST(Tiles, DensityThatVariesAcrossTheSurface)
+{
+  const shapes::SampledShape sampled =
+      shapes::sampleRandom(Shape::genus3, 20000, 5, /*density_ramp=*/true);
+  expectTilingChangesNothing(sampled.points, sampled.name + " ramp", {2, 7}, 0);
+}
+
+TEST(Tiles, CosphericalGridWithDuplicates)
+{
+  // A cube's surface sampled on a grid: every grid square is four cocircular points,
+  // and with the square beside it six cospherical ones, so the triangulation is
+  // decided by CGAL's symbolic perturbation; it must decide the same in every tile.
+  // Some points repeated, to check duplicates keep their representative.
+  std::vector<Eigen::Vector3d> points;
+  const int m = 24;
+  for (int i = 0; i <= m; ++i)
+    for (int j = 0; j <= m; ++j)
+      for (int k = 0; k <= m; ++k)
+        if (i == 0 || j == 0 || k == 0 || i == m || j == m || k == m)
+          points.emplace_back(i, j, k);
+  const std::size_t distinct = points.size();
+  for (std::size_t i = 0; i < distinct; i += 37)
+    points.push_back(points[i]);
+  expectTilingChangesNothing(points, "grid cube", {2, 7, 64}, 0);
+}
+
+TEST(Tiles, SphereFallsBackToOneTileWithTheSameResult)
+{
+  // Every Voronoi cell of a sphere's samples reaches its centre: no halo short of the
+  // whole sphere makes a star exact, so the build falls back to one tile, and says so.
+  const shapes::SampledShape sphere = shapes::sampleRandom(Shape::sphere, 20000, 2);
+  const VoronoiCocone tiled = diagram(sphere.points, 7, 0);
+  EXPECT_EQ(tiled.timings().tiles, 1u);
+  expectSameDiagram(diagram(sphere.points, 1, 0), tiled, "sphere");
+}
+
+TEST(Tiles, MoreTilesThanSamples)
+{
+  const std::vector<Eigen::Vector3d> points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0},
+                                               {0, 0, 1}, {1, 1, 1}, {0.5, 0.2, 0.7}};
+  const VoronoiCocone whole = diagram(points, 1, 0);
+  const VoronoiCocone tiled = diagram(points, 1000, 0);
+  expectSameDiagram(whole, tiled, "6 points");
+}
+
+TEST(Tiles, SharedScans)
+{
+  const std::vector<std::string> files = {"bun_zipper_35947.ply", "pcl_milk_13704.pcd",
+                                          "fandisk_6475.obj",
+                                          "pcl_lidar_terrain_samp11-utm_38010.pcd"};
+  std::size_t found = 0;
+  for (const std::string& file : files) {
+    const std::string path = shapes::dataFile(file);
+    if (path.empty())
+      continue;
+    ++found;
+    const auto cloud = shapes::loadCloud(path);
+    std::vector<Eigen::Vector3d> points;
+    for (const auto& p : cloud->points)
+      if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))
+        points.emplace_back(p.x, p.y, p.z);
+    expectTilingChangesNothing(points, file, {2, 7, 64}, 0);
+  }
+  if (found == 0)
+    GTEST_SKIP() << "no shared scan in " << shapes::dataDirectory();
+}
+
+} // namespace
