@@ -21,7 +21,7 @@ namespace detail {
 namespace {
 
 // Conflict tests a tile may spend, per sample its budget allows, before it gives up.
-constexpr std::size_t kTestsPerSample = 64;
+constexpr std::size_t kTestsPerSample = 32;
 
 /** The leaves a tile triangulates, and those still to insert. */
 class LocalLeaves
@@ -235,7 +235,12 @@ triangulateTile(const KdTiling& tiling, unsigned tile,
 
     // Every cell at an own sample: may a sample outside tile and halo conflict with
     // it? If so, the leaves that may hold one join the halo.
+    const std::size_t test_limit = kTestsPerSample * budget;
     for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
+      // Give up as soon as the budget is spent, not at the end of the round: a round
+      // on a tile whose cells reach across the cloud costs more than the whole cloud.
+      if (stats.local + leaves.pendingCount() > budget || tests > test_limit)
+        return stats;
       bool at_own_sample = false;
       for (int j = 0; j < 4 && !at_own_sample; ++j)
         at_own_sample = owned(c->vertex(j));

@@ -34,7 +34,8 @@ struct TileTriangulationStats
  * margin of 1e-6 covers the rounding of the circumcenters): they may grow the halo
  * more than needed, never less.
  *
- * Stops, with complete == false, once the halo would exceed \a budget samples in all,
+ * Stops, with complete == false, once the halo would exceed \a budget samples in all
+ * or its conflict tests 32 per sample of \a budget,
  * or when \a give_up returns true (checked between rounds). \a on_inserted is called
  * with a count of samples inserted, every 65536 and at the end of each round. */
 TileTriangulationStats
