@@ -4,6 +4,7 @@
 // flat arrays, which then replace it.
 #include "voronoi/cell_geometry.h"
 
+#include "common/status_guard.h"
 #include "voronoi/cocone_edge.h"
 
 #include <tbb/blocked_range.h>
@@ -15,6 +16,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -23,6 +25,18 @@ namespace cocone {
 namespace detail {
 
 namespace {
+
+/** Stars, cells and triangles are addressed with 32-bit offsets: refuses a cloud whose
+ * triangulation has more entries than they reach (about 50M samples at 20 cells each,
+ * 160M at the 6.5 of a scan). */
+void
+checkAddressable(std::size_t count, const char* what)
+{
+  if (count >= std::numeric_limits<std::uint32_t>::max())
+    throw StageFailure{Status::too_many_points,
+                       std::string("the triangulation has more ") + what +
+                           " than 32-bit offsets address"};
+}
 
 /** A cell's samples in ascending order (kNoSample, the infinite vertex, last): the
  * name of the cell in every tile, whatever its number there. */
@@ -129,8 +143,9 @@ computePoles(const CellTable& cells, const std::vector<Eigen::Vector3d>& points,
   const Eigen::Vector3d& p = points[s];
   // Ties and sums go in the cross-tile cell order (CellTable::before), not in the
   // star's, which differs from tile to tile: the same bits in every tile.
-  std::array<std::pair<std::uint32_t, Eigen::Vector3d>, 16> hull_normals;
-  std::size_t hull_count = 0;
+  // A rim sample of an open scan can have dozens of hull facets: uncapped, per thread.
+  thread_local std::vector<std::pair<std::uint32_t, Eigen::Vector3d>> hull_normals;
+  hull_normals.clear();
   Eigen::Vector3d hull_normal_sum = Eigen::Vector3d::Zero();
   double farthest2 = -1;
   std::uint32_t farthest = 0;
@@ -142,10 +157,7 @@ computePoles(const CellTable& cells, const std::vector<Eigen::Vector3d>& points,
       const std::uint32_t inside = cells.neighbours[*c][cells.indexOf(*c, kNoSample)];
       const Eigen::Vector3d normal =
           hullFacetNormal(cells, points, inside, cells.facetTowards(inside, *c));
-      if (hull_count < hull_normals.size())
-        hull_normals[hull_count++] = {*c, normal};
-      else
-        hull_normal_sum += normal; // more than 16 hull facets at one sample: rare
+      hull_normals.emplace_back(*c, normal);
       continue;
     }
     const double d2 = (cells.centers[*c] - p).squaredNorm();
@@ -156,10 +168,10 @@ computePoles(const CellTable& cells, const std::vector<Eigen::Vector3d>& points,
     }
   }
   std::sort(
-      hull_normals.begin(), hull_normals.begin() + hull_count,
+      hull_normals.begin(), hull_normals.end(),
       [&](const auto& a, const auto& b) { return cells.before(a.first, b.first); });
-  for (std::size_t k = 0; k < hull_count; ++k)
-    hull_normal_sum += hull_normals[k].second;
+  for (const auto& hull_normal : hull_normals)
+    hull_normal_sum += hull_normal.second;
   if (geometry.unbounded) {
     const double length = hull_normal_sum.norm();
     if (length > 1e-12)
@@ -249,8 +261,9 @@ computeTileGeometry(Delaunay& dt, const std::vector<Eigen::Vector3d>& points,
     return s != kNoSample && tile_of[s] == tile;
   };
 
-  // The local vertices, numbered in the triangulation's vertex order, which is its
-  // insertion order, a spatial one: neighbouring samples share the cells of their
+  // The local vertices, numbered in the triangulation's vertex order, which follows
+  // the insertion (a spatial order, cut among threads): neighbouring samples mostly
+  // share the cells of their
   // stars. Each vertex's info becomes its local number for the tables below.
   std::vector<SampleIndex> sample_of;
   sample_of.reserve(dt.number_of_vertices());
@@ -276,6 +289,7 @@ computeTileGeometry(Delaunay& dt, const std::vector<Eigen::Vector3d>& points,
     all_cells.push_back(c);
   }
   const std::size_t finite_cells = all_cells.size();
+  checkAddressable(4 * (all_cells.size() + infinite_cells.size()), "star entries");
   for (const CellHandle c : infinite_cells) {
     c->cellIndex() = static_cast<std::uint32_t>(all_cells.size());
     all_cells.push_back(c);
@@ -355,11 +369,8 @@ computeTileGeometry(Delaunay& dt, const std::vector<Eigen::Vector3d>& points,
         CellGeometry geometry;
         for (std::size_t k = range.begin(); k != range.end(); ++k) {
           const SampleIndex v = own_vertices[k];
-          std::uint32_t* star_begin = star_cells.data() + star_offsets[v];
-          std::uint32_t* star_end = star_cells.data() + star_offsets[v + 1];
-          std::sort(star_begin, star_end, [&](std::uint32_t a, std::uint32_t b) {
-            return cells.before(a, b);
-          });
+          const std::uint32_t* star_begin = star_cells.data() + star_offsets[v];
+          const std::uint32_t* star_end = star_cells.data() + star_offsets[v + 1];
           computePoles(cells, local_points, v, star_begin, star_end, geometry);
           const SampleIndex s = sample_of[v];
           // Poles are kept in the frame of the samples, not of the local table.
@@ -454,6 +465,7 @@ joinTiles(std::vector<TileContribution>& tiles, DiagramState& d)
     }
   }
 
+  checkAddressable(4 * all_cells.size(), "star entries");
   // Stars (CSR by sample, cells ascending), filled by a few blocks of cells at once:
   // each block counts its cells per sample, so it knows where in each list its own
   // cells go.
@@ -493,6 +505,10 @@ joinTiles(std::vector<TileContribution>& tiles, DiagramState& d)
   d.stars.cells = std::move(star_cells);
   // Marked triangles: the marks of one triangle's vertices may come from up to three
   // tiles; grouped by smallest vertex, sorted, merged.
+  std::size_t mark_count = 0;
+  for (const TileContribution& tile : tiles)
+    mark_count += tile.marks.size();
+  checkAddressable(3 * mark_count, "marked triangle incidences");
   std::vector<std::uint32_t> group(n + 1, 0);
   for (const TileContribution& tile : tiles)
     for (const MarkedTriangle& t : tile.marks)

@@ -79,7 +79,8 @@ using CellBase = VoronoiCellBase<Kernel>;
  * data structure, faster than the concurrent one on one core. */
 using SequentialDelaunay = CGAL::Delaunay_triangulation_3<
     Kernel, CGAL::Triangulation_data_structure_3<VertexBase, CellBase>>;
-/** CGAL's concurrent triangulation: points inserted as a range go in on every core.
+/** CGAL's concurrent triangulation: with a lock grid, points go in on every core
+ * (tiled_delaunay.cpp, insertSamples).
  * Its cells come out in an order that depends on the thread schedule, but the cells
  * themselves do not (the triangulation of a point set is unique, degenerate cases
  * decided by symbolic perturbation), and nothing read from it depends on their order

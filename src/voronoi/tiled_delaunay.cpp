@@ -3,13 +3,20 @@
 // its samples' stars are exact.
 #include "voronoi/tiled_delaunay.h"
 
+#include "common/status_guard.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include <CGAL/Interval_nt.h>
+#include <CGAL/Simple_cartesian.h>
+
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <thread>
@@ -149,6 +156,65 @@ insertSamples(Delaunay& dt, const std::vector<Eigen::Vector3d>& points,
     on_inserted(unreported.exchange(0));
 }
 
+/** A bound on a finite cell's circumball: the box of its interval circumcenter, and a
+ * radius no smaller than the true one from any point of that box. */
+struct IntervalBall
+{
+  Eigen::AlignedBox3d center;
+  double reach = std::numeric_limits<double>::infinity();
+
+  bool
+  bounded() const
+  {
+    return std::isfinite(reach) && center.min().allFinite() && center.max().allFinite();
+  }
+  /** Every point the ball may hold lies in this box. */
+  Eigen::AlignedBox3d
+  hull() const
+  {
+    return Eigen::AlignedBox3d(center.min().array() - reach,
+                               center.max().array() + reach);
+  }
+  /** Whether \a box may hold a point of the ball. */
+  bool
+  mayReach(const Eigen::AlignedBox3d& box) const
+  {
+    if (!bounded())
+      return true;
+    const Eigen::Vector3d gap = (box.min() - center.max())
+                                    .cwiseMax(center.min() - box.max())
+                                    .cwiseMax(Eigen::Vector3d::Zero());
+    return gap.squaredNorm() <= reach * reach;
+  }
+};
+
+IntervalBall
+circumballBound(CellHandle c)
+{
+  using IntervalKernel = CGAL::Simple_cartesian<CGAL::Interval_nt<true>>;
+  std::array<IntervalKernel::Point_3, 4> q;
+  for (int j = 0; j < 4; ++j) {
+    const Point& p = c->vertex(j)->point();
+    q[j] = IntervalKernel::Point_3(p.x(), p.y(), p.z());
+  }
+  const IntervalKernel::Point_3 o = CGAL::circumcenter(q[0], q[1], q[2], q[3]);
+  IntervalBall ball;
+  ball.center =
+      Eigen::AlignedBox3d(Eigen::Vector3d(o.x().inf(), o.y().inf(), o.z().inf()),
+                          Eigen::Vector3d(o.x().sup(), o.y().sup(), o.z().sup()));
+  if (!ball.center.min().allFinite() || !ball.center.max().allFinite())
+    return ball;
+  // The farthest corner of the center's box from a vertex bounds the radius; the
+  // relative 1e-12 covers the rounding of these few operations.
+  const Point& v = c->vertex(0)->point();
+  const Eigen::Vector3d vertex(v.x(), v.y(), v.z());
+  const Eigen::Vector3d far = (ball.center.min() - vertex)
+                                  .cwiseAbs()
+                                  .cwiseMax((ball.center.max() - vertex).cwiseAbs());
+  ball.reach = far.norm() * (1 + 1e-12);
+  return ball;
+}
+
 } // namespace
 
 TileTriangulationStats
@@ -182,7 +248,8 @@ triangulateTile(const KdTiling& tiling, unsigned tile,
   if (tiling.numTiles() > 1)
     add_box(safe_box);
 
-  const double scale = std::max(1e-300, tile_box.diagonal().norm());
+  // Lengths below this are rounding, for the cloud's coordinates.
+  const double floor_length = 1e-12 * tiling.box().diagonal().norm();
   const VertexHandle infinite = dt.infinite_vertex();
   const auto owned = [&](VertexHandle v) {
     return v != infinite && tile_of[v->info()] == tile;
@@ -215,8 +282,15 @@ triangulateTile(const KdTiling& tiling, unsigned tile,
     stats.local += fresh.size();
     ++stats.rounds;
     insertSamples(dt, points, fresh, on_inserted);
-    if (tiling.numTiles() == 1)
-      break; // every sample is local: every star is final
+    if (tiling.numTiles() == 1) {
+      // Every sample is local: every star is final. Centering the points rounds
+      // them, which can flatten a cloud that compute() found 3D.
+      if (dt.dimension() < 3)
+        throw StageFailure{Status::degenerate_dimension,
+                           "all points are coplanar once centered: no 3D Voronoi cell "
+                           "to measure"};
+      break;
+    }
 
     if (dt.dimension() < 3) {
       // The local samples are flat: widen the halo until they are not (the whole
@@ -229,17 +303,21 @@ triangulateTile(const KdTiling& tiling, unsigned tile,
         add_box(safe_box);
       } while (leaves.pendingCount() == 0 && !safe_box.contains(tiling.box()));
       if (leaves.pendingCount() == 0)
-        throw std::logic_error("a tile of a 3D cloud stays flat with every leaf local");
+        throw StageFailure{Status::degenerate_dimension,
+                           "all points are coplanar once centered: no 3D Voronoi cell "
+                           "to measure"};
       continue;
     }
 
     // Every cell at an own sample: may a sample outside tile and halo conflict with
     // it? If so, the leaves that may hold one join the halo.
     const std::size_t test_limit = kTestsPerSample * budget;
+    std::size_t cells_seen = 0;
     for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
       // Give up as soon as the budget is spent, not at the end of the round: a round
       // on a tile whose cells reach across the cloud costs more than the whole cloud.
-      if (stats.local + leaves.pendingCount() > budget || tests > test_limit)
+      if (stats.local + leaves.pendingCount() > budget || tests > test_limit ||
+          (give_up && (++cells_seen & 0xfffu) == 0 && give_up()))
         return stats;
       bool at_own_sample = false;
       for (int j = 0; j < 4 && !at_own_sample; ++j)
@@ -248,20 +326,15 @@ triangulateTile(const KdTiling& tiling, unsigned tile,
         continue;
       const int at_infinity = c->has_vertex(infinite) ? c->index(infinite) : -1;
       if (at_infinity < 0) {
-        const Point center =
-            CGAL::circumcenter(c->vertex(0)->point(), c->vertex(1)->point(),
-                               c->vertex(2)->point(), c->vertex(3)->point());
-        const Eigen::Vector3d o = toEigen(center);
-        const double radius = (o - toEigen(c->vertex(0)->point())).norm();
-        const double reach = radius * (1 + 1e-6) + 1e-12 * scale;
-        if (std::isfinite(reach) && safe_box.contains(Eigen::AlignedBox3d(
-                                        o.array() - reach, o.array() + reach)))
+        // The circumcenter in interval arithmetic: its box holds the true center
+        // however flat the cell, and a sample may lie in the circumball only within
+        // `reach` of that box. A cell too flat for intervals has an unbounded box,
+        // and every leaf is tested.
+        const IntervalBall ball = circumballBound(c);
+        if (ball.bounded() && safe_box.contains(ball.hull()))
           continue;
         tiling.visitLeaves(
-            [&](const Eigen::AlignedBox3d& b) {
-              return !std::isfinite(reach) ||
-                     b.squaredExteriorDistance(o) <= reach * reach;
-            },
+            [&](const Eigen::AlignedBox3d& b) { return ball.mayReach(b); },
             [&](std::uint32_t l) { add_if_in_conflict(l, c); });
         continue;
       }
@@ -272,28 +345,33 @@ triangulateTile(const KdTiling& tiling, unsigned tile,
       const Eigen::Vector3d b = toEigen(c->vertex((at_infinity + 2) & 3)->point());
       const Eigen::Vector3d d = toEigen(c->vertex((at_infinity + 3) & 3)->point());
       const CellHandle inside = c->neighbor(at_infinity);
-      const Eigen::Vector3d opposite =
-          toEigen(inside->vertex(inside->index(c))->point());
+      const Point& opposite = inside->vertex(inside->index(c))->point();
       Eigen::Vector3d normal = (b - a).cross(d - a);
-      if (normal.dot(opposite - a) > 0)
+      // Which side is beyond, exactly: the normal points away from the hull's inside.
+      if (CGAL::orientation(c->vertex((at_infinity + 1) & 3)->point(),
+                            c->vertex((at_infinity + 2) & 3)->point(),
+                            c->vertex((at_infinity + 3) & 3)->point(),
+                            opposite) == CGAL::POSITIVE)
         normal = -normal;
       const double length = normal.norm();
-      if (!(length > 0)) {
-        // A facet too thin to have a normal: which side is beyond cannot be told.
+      if (!(length > 1e-8 * (b - a).norm() * (d - a).norm())) {
+        // A needle facet: its normal's direction is not known well enough to cut
+        // leaves away. Every leaf is tested.
         tiling.visitLeaves([](const Eigen::AlignedBox3d&) { return true; },
                            [&](std::uint32_t l) { add_if_in_conflict(l, c); });
         continue;
       }
       normal /= length;
-      const double slack = 1e-6 * scale;
       tiling.visitLeaves(
           [&](const Eigen::AlignedBox3d& box) {
-            // The box's corner farthest along the normal.
+            // The box's corner farthest along the normal. The normal's direction is
+            // off by at most 1e-8 radians: a slack growing with the distance.
             const Eigen::Vector3d corner(normal.x() > 0 ? box.max().x() : box.min().x(),
                                          normal.y() > 0 ? box.max().y() : box.min().y(),
                                          normal.z() > 0 ? box.max().z()
                                                         : box.min().z());
-            return (corner - a).dot(normal) >= -slack;
+            const Eigen::Vector3d offset = corner - a;
+            return offset.dot(normal) >= -(1e-7 * offset.norm() + floor_length);
           },
           [&](std::uint32_t l) { add_if_in_conflict(l, c); });
     }

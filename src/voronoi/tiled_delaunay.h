@@ -30,9 +30,11 @@ struct TileTriangulationStats
  * half-space beyond its hull facet) that holds no sample outside tile and halo. Such a
  * cell is a cell of the triangulation of all the samples, and a star made of such
  * cells is that sample's star in the whole triangulation: the tile's geometry equals
- * the untiled one. The tests on balls and half-spaces are conservative (a relative
- * margin of 1e-6 covers the rounding of the circumcenters): they may grow the halo
- * more than needed, never less.
+ * the untiled one. Which leaves to test is decided on bounds that hold whatever the
+ * rounding: the circumcenter in interval arithmetic, the side of a hull facet with
+ * CGAL's exact orientation (a needle facet, or a cell too flat for intervals, has every
+ * leaf tested); each sample of a chosen leaf is then tested with CGAL's exact
+ * predicate and symbolic perturbation. The halo may grow more than needed, never less.
  *
  * Stops, with complete == false, once the halo would exceed \a budget samples in all
  * or its conflict tests 32 per sample of \a budget,

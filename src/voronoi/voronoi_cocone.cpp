@@ -38,6 +38,8 @@ namespace {
 // Cells per side of the lock grid of CGAL's concurrent insertion (its own examples'
 // value).
 constexpr int kLockGrid = 50;
+// The most tiles a diagram is cut into.
+constexpr unsigned kMaxTiles = 1024;
 // Samples per leaf, the unit a halo grows by.
 constexpr unsigned kLeafSamples = 128;
 // A tile whose halo would hold more than this many times its own samples (plus a
@@ -507,7 +509,10 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
   // measured on random samples of closed and open surfaces, two tiles triangulate
   // 1.5 to 2 times the samples, more tiles give up (docs/scaling.md). One
   // triangulation built on every core beats that.
-  const unsigned tiles = parameters.tiles == 0 ? 1 : parameters.tiles;
+  // At most one tile per leaf, and kMaxTiles: each tile scans every leaf's box.
+  const unsigned tiles = std::min<unsigned>(
+      {parameters.tiles == 0 ? 1 : parameters.tiles, kMaxTiles,
+       static_cast<unsigned>(std::max<std::size_t>(1, unique / kLeafSamples))});
   const double sin_theta = std::sin(parameters.cocone_angle);
   std::vector<TileContribution> contributions;
   double delaunay_seconds = 0, geometry_seconds = 0;

@@ -139,8 +139,8 @@ struct VoronoiParameters
    * far, as they do on compact surfaces cut into small tiles (a sphere's cells all
    * meet near its centre). 0 (default): automatic, which is one tile (the measured
    * halos, docs/scaling.md, cost more than parallel tiles gain on one machine; the
-   * one triangulation is built on every core); 1: one tile. Any value is valid; more
-   * tiles than distinct samples count as one per sample. */
+   * one triangulation is built on every core); 1: one tile. Any value is valid; it is
+   * capped at 1024 and at one tile per 128 distinct samples. */
   unsigned tiles = 0;
 };
 
