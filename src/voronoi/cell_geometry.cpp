@@ -7,6 +7,10 @@
 #include "common/status_guard.h"
 #include "voronoi/cocone_edge.h"
 
+#include <CGAL/Exact_rational.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/constructions/kernel_ftC3.h>
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -52,8 +56,25 @@ circumcenter(CellHandle c,
   const auto at = [&](int j) -> const Point& {
     return c->vertex(static_cast<int>(by_sample[j].second))->point();
   };
-  const Point center = CGAL::circumcenter(at(0), at(1), at(2), at(3));
-  return {center.x(), center.y(), center.z()};
+  const Point &p = at(0), &q = at(1), &r = at(2), &s = at(3);
+  double num_x, num_y, num_z, den;
+  CGAL::determinants_for_circumcenterC3(p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), r.x(),
+                                        r.y(), r.z(), s.x(), s.y(), s.z(), num_x, num_y,
+                                        num_z, den);
+  if (den != 0) { // CGAL's own formula, to the bit
+    const double inv = 1 / (2 * den);
+    return {p.x() + num_x * inv, p.y() - num_y * inv, p.z() + num_z * inv};
+  }
+  // Rounding cancelled the volume of a nearly flat cell (its vertices are not
+  // coplanar: the triangulation's predicates are exact): construct it exactly.
+  using ExactKernel = CGAL::Simple_cartesian<CGAL::Exact_rational>;
+  const auto exact = [](const Point& v) {
+    return ExactKernel::Point_3(v.x(), v.y(), v.z());
+  };
+  const ExactKernel::Point_3 center =
+      CGAL::circumcenter(exact(p), exact(q), exact(r), exact(s));
+  return {CGAL::to_double(center.x()), CGAL::to_double(center.y()),
+          CGAL::to_double(center.z())};
 }
 
 /** The triangulation as flat arrays by cell number, finite cells first and the

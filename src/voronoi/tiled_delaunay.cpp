@@ -11,6 +11,7 @@
 
 #include <CGAL/Interval_nt.h>
 #include <CGAL/Simple_cartesian.h>
+#include <CGAL/constructions/kernel_ftC3.h>
 
 #include <algorithm>
 #include <array>
@@ -197,7 +198,18 @@ circumballBound(CellHandle c)
     const Point& p = c->vertex(j)->point();
     q[j] = IntervalKernel::Point_3(p.x(), p.y(), p.z());
   }
-  const IntervalKernel::Point_3 o = CGAL::circumcenter(q[0], q[1], q[2], q[3]);
+  // CGAL's formula, in intervals; a denominator that may be 0 leaves the box
+  // unbounded (every leaf is tested).
+  using Interval = CGAL::Interval_nt<true>;
+  Interval num_x, num_y, num_z, den;
+  CGAL::determinants_for_circumcenterC3(
+      q[0].x(), q[0].y(), q[0].z(), q[1].x(), q[1].y(), q[1].z(), q[2].x(), q[2].y(),
+      q[2].z(), q[3].x(), q[3].y(), q[3].z(), num_x, num_y, num_z, den);
+  if (den.inf() <= 0 && den.sup() >= 0)
+    return IntervalBall();
+  const Interval inv = Interval(1) / (Interval(2) * den);
+  const IntervalKernel::Point_3 o(q[0].x() + num_x * inv, q[0].y() - num_y * inv,
+                                  q[0].z() + num_z * inv);
   IntervalBall ball;
   ball.center =
       Eigen::AlignedBox3d(Eigen::Vector3d(o.x().inf(), o.y().inf(), o.z().inf()),
