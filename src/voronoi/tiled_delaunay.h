@@ -37,9 +37,10 @@ struct TileTriangulationStats
  * predicate and symbolic perturbation. The halo may grow more than needed, never less.
  *
  * Stops, with complete == false, once the halo would exceed \a budget samples in all
- * or its conflict tests 32 per sample of \a budget,
- * or when \a give_up returns true (checked between rounds). \a on_inserted is called
- * with a count of samples inserted, every 65536 and at the end of each round. */
+ * or its conflict tests 32 per sample of \a budget, or when \a give_up returns true
+ * (checked between rounds and every 4096 cells tested). \a on_inserted is called on
+ * the thread that runs the tile, with counts of samples inserted: about every 65536,
+ * and the rest at the end of each round. */
 TileTriangulationStats
 triangulateTile(const KdTiling& tiling, unsigned tile,
                 const std::vector<Eigen::Vector3d>& points,
