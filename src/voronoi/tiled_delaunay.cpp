@@ -232,7 +232,7 @@ circumballBound(CellHandle c)
 TileTriangulationStats
 triangulateTile(const KdTiling& tiling, unsigned tile,
                 const std::vector<Eigen::Vector3d>& points,
-                const std::vector<std::uint32_t>& tile_of, std::size_t budget,
+                const std::vector<std::uint32_t>& tile_of, unsigned halo_factor,
                 Delaunay& dt, const std::function<void(std::size_t)>& on_inserted,
                 const std::function<bool()>& give_up)
 {
@@ -241,6 +241,9 @@ triangulateTile(const KdTiling& tiling, unsigned tile,
   for (std::uint32_t l = tiling.firstLeaf(tile); l < tiling.firstLeaf(tile + 1); ++l)
     leaves.add(l);
   stats.owned = leaves.pendingCount();
+  // One tile holds every sample: no halo, and a budget it cannot exceed.
+  const std::size_t budget =
+      tiling.numTiles() == 1 ? tiling.order().size() : halo_factor * stats.owned + 2048;
 
   // The first halo: every leaf within a margin of the tile's box. Any sample inside
   // the grown box is then local, which settles most cells without a search.

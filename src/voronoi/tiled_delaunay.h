@@ -36,15 +36,15 @@ struct TileTriangulationStats
  * leaf tested); each sample of a chosen leaf is then tested with CGAL's exact
  * predicate and symbolic perturbation. The halo may grow more than needed, never less.
  *
- * Stops, with complete == false, once the halo would exceed \a budget samples in all
- * or its conflict tests 32 per sample of \a budget, or when \a give_up returns true
- * (checked between rounds and every 4096 cells tested). \a on_inserted is called on
- * the thread that runs the tile, with counts of samples inserted: about every 65536,
- * and the rest at the end of each round. */
+ * Stops, with complete == false, once tile and halo would exceed \a halo_factor times
+ * the tile's own samples plus 2048, or its conflict tests 32 per sample of that budget,
+ * or when \a give_up returns true (checked between rounds and every 4096 cells tested).
+ * \a on_inserted is called on the thread that runs the tile, with counts of samples
+ * inserted: about every 65536, and the rest at the end of each round. */
 TileTriangulationStats
 triangulateTile(const KdTiling& tiling, unsigned tile,
                 const std::vector<Eigen::Vector3d>& points,
-                const std::vector<std::uint32_t>& tile_of, std::size_t budget,
+                const std::vector<std::uint32_t>& tile_of, unsigned halo_factor,
                 Delaunay& dt, const std::function<void(std::size_t)>& on_inserted,
                 const std::function<bool()>& give_up);
 

@@ -42,8 +42,8 @@ constexpr int kLockGrid = 50;
 constexpr unsigned kMaxTiles = 1024;
 // Samples per leaf, the unit a halo grows by.
 constexpr unsigned kLeafSamples = 128;
-// A tile whose halo would hold more than this many times its own samples (plus a
-// few thousand) gives up: the cloud's cells reach too far for tiles to pay.
+// A tile whose halo would hold more than this many times its own samples (plus
+// 2048) gives up: the cloud's cells reach too far for tiles to pay.
 constexpr unsigned kHaloBudget = 3;
 } // namespace
 
@@ -536,7 +536,6 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
     std::vector<TileTriangulationStats> stats(count);
     std::vector<double> dt_time(count, 0), geometry_time(count, 0);
     std::atomic<bool> outgrown{false};
-    const std::size_t budget = count == 1 ? unique : 0;
     const auto on_inserted = [&](std::size_t k) {
       const std::size_t done = inserted += k;
       if (cancelled)
@@ -562,12 +561,9 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
                               kLockGrid);
           // One thread: no locks, CGAL's sequential insertion.
           Delaunay dt(Kernel(), parameters.threads == 1 ? nullptr : &locks);
-          const std::size_t owned =
-              tiling.leaf(tiling.firstLeaf(unsigned(t) + 1) - 1).last -
-              tiling.leaf(tiling.firstLeaf(unsigned(t))).first;
-          stats[t] = triangulateTile(tiling, unsigned(t), d.centered, tile_of,
-                                     budget != 0 ? budget : kHaloBudget * owned + 2048,
-                                     dt, on_inserted, [&] { return outgrown.load(); });
+          stats[t] =
+              triangulateTile(tiling, unsigned(t), d.centered, tile_of, kHaloBudget, dt,
+                              on_inserted, [&] { return outgrown.load(); });
           if (!stats[t].complete) {
             outgrown = true;
             return;
