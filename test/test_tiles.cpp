@@ -5,19 +5,26 @@
 // generated shapes, sampled at random and on grids full of cospherical points, and on
 // the shared scans.
 #include "support/data_paths.h"
+#include "support/noise.h"
 #include "support/shapes.h"
 
 #include <pcl/cocone/core/reconstruction.h>
+#include <pcl/cocone/core/tile_exchange.h>
 #include <pcl/cocone/core/voronoi_cocone.h>
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <cstring>
+#include <functional>
 #include <iostream>
+#include <memory>
+#include <mutex>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace {
@@ -202,6 +209,163 @@ TEST(Tiles, MoreTilesThanSamples)
   const VoronoiCocone whole = diagram(points, 1, 0);
   const VoronoiCocone tiled = diagram(points, 1000, 0);
   expectSameDiagram(whole, tiled, "6 points");
+}
+
+/** A TileExchange between threads of this process, standing for the processes of an
+ * MPI run: each thread holds one with its rank, all share one mailbox. */
+class ThreadExchange : public pcl::cocone::TileExchange
+{
+public:
+  struct Mailbox
+  {
+    std::mutex mutex;
+    std::condition_variable arrived;
+    std::vector<std::vector<std::uint8_t>> messages;
+    unsigned received = 0;
+  };
+
+  ThreadExchange(unsigned rank, unsigned size, std::shared_ptr<Mailbox> mailbox)
+    : rank_(rank), size_(size), mailbox_(std::move(mailbox))
+  {}
+
+  unsigned
+  rank() const override
+  {
+    return rank_;
+  }
+  unsigned
+  size() const override
+  {
+    return size_;
+  }
+  std::vector<std::vector<std::uint8_t>>
+  gatherToRoot(const std::vector<std::uint8_t>& message) override
+  {
+    std::unique_lock<std::mutex> lock(mailbox_->mutex);
+    if (rank_ != 0) {
+      mailbox_->messages[rank_] = message;
+      ++mailbox_->received;
+      mailbox_->arrived.notify_all();
+      return {};
+    }
+    mailbox_->arrived.wait(lock, [&] { return mailbox_->received + 1 == size_; });
+    return mailbox_->messages;
+  }
+
+private:
+  unsigned rank_, size_;
+  std::shared_ptr<Mailbox> mailbox_;
+};
+
+/** The diagram of \a points built by \a processes threads sharing \a tiles tiles
+ * through a ThreadExchange: the root's diagram. Every other one must hand off. */
+VoronoiCocone
+sharedDiagram(const std::vector<Eigen::Vector3d>& points, unsigned tiles,
+              unsigned processes)
+{
+  auto mailbox = std::make_shared<ThreadExchange::Mailbox>();
+  mailbox->messages.resize(processes);
+  const auto parameters = [&](unsigned rank) {
+    VoronoiParameters p;
+    p.tiles = tiles;
+    p.threads = 1;
+    p.exchange = std::make_shared<ThreadExchange>(rank, processes, mailbox);
+    return p;
+  };
+  std::vector<Status> worker_status(processes, Status::ok);
+  std::vector<std::thread> workers;
+  for (unsigned r = 1; r < processes; ++r)
+    workers.emplace_back([&, r] {
+      VoronoiCocone worker(parameters(r));
+      worker_status[r] = worker.compute(points);
+    });
+  VoronoiCocone root(parameters(0));
+  EXPECT_EQ(root.compute(points), Status::ok) << root.errorMessage();
+  for (std::thread& worker : workers)
+    worker.join();
+  for (unsigned r = 1; r < processes; ++r)
+    EXPECT_EQ(worker_status[r], Status::not_computed) << "process " << r;
+  return root;
+}
+
+TEST(Tiles, SharedByProcessesAsOneProcessBuildsIt)
+{
+  // Clean and noisy random samples (the noisy ones are smoothed by every process on
+  // its own: the same smoothing everywhere), tiled and falling back to one tile.
+  const shapes::SampledShape torus = shapes::sampleRandom(Shape::torus, 20000, 4);
+  const shapes::SampledShape noisy =
+      shapes::withGaussianNoise(shapes::sampleRandom(Shape::torus, 20000, 6), 0.3);
+  for (const shapes::SampledShape* shape : {&torus, &noisy}) {
+    const VoronoiCocone whole = diagram(shape->points, 1, 0);
+    const std::vector<TriangleIndices> whole_mesh = mesh(whole);
+    for (const unsigned processes : {2u, 3u}) {
+      const std::string run =
+          shape->name + ", " + std::to_string(processes) + " processes";
+      const VoronoiCocone shared = sharedDiagram(shape->points, processes, processes);
+      EXPECT_EQ(shared.timings().tiles, processes) << run << ": fell back";
+      expectSameDiagram(whole, shared, run);
+      EXPECT_TRUE(mesh(shared) == whole_mesh) << run << ": the meshes differ";
+    }
+    // 64 tiles outgrow their halos: the root builds one tile itself.
+    const VoronoiCocone fallback = sharedDiagram(shape->points, 64, 3);
+    EXPECT_EQ(fallback.timings().tiles, 1u);
+    expectSameDiagram(whole, fallback, shape->name + ", 64 tiles on 3 processes");
+  }
+}
+
+/** An exchange that hands the root \a messages instead of the other processes'. */
+class ForgedExchange : public pcl::cocone::TileExchange
+{
+public:
+  explicit ForgedExchange(std::vector<std::vector<std::uint8_t>> messages)
+    : messages_(std::move(messages))
+  {}
+  unsigned
+  rank() const override
+  {
+    return 0;
+  }
+  unsigned
+  size() const override
+  {
+    return 2;
+  }
+  std::vector<std::vector<std::uint8_t>>
+  gatherToRoot(const std::vector<std::uint8_t>&) override
+  {
+    return messages_;
+  }
+
+private:
+  std::vector<std::vector<std::uint8_t>> messages_;
+};
+
+TEST(Tiles, BadMessagesFromOtherProcessesFailWithAReason)
+{
+  const shapes::SampledShape torus = shapes::sampleRandom(Shape::torus, 5000, 4);
+  const auto compute = [&](std::vector<std::vector<std::uint8_t>> messages,
+                           const std::string& expected) {
+    VoronoiParameters p;
+    p.tiles = 2;
+    p.exchange = std::make_shared<ForgedExchange>(std::move(messages));
+    VoronoiCocone root(p);
+    EXPECT_EQ(root.compute(torus.points), Status::internal_error) << expected;
+    EXPECT_NE(root.errorMessage().find(expected), std::string::npos)
+        << root.errorMessage();
+  };
+  // Says its tile is complete, then ends.
+  compute({{}, {1, 1, 0, 0, 0, 1, 0, 0, 0}}, "truncated");
+  // Names a tile beyond the tiling.
+  compute({{}, {1, 1, 0, 0, 0, 9, 0, 0, 0}}, "names tile 9");
+  // An empty message, and a message missing altogether.
+  compute({{}, {}}, "truncated");
+  compute({{}}, "1 messages for 2 processes");
+  // A process with an invalid rank.
+  VoronoiParameters p;
+  p.exchange = std::make_shared<ThreadExchange>(
+      3, 2, std::make_shared<ThreadExchange::Mailbox>());
+  VoronoiCocone lost(p);
+  EXPECT_EQ(lost.compute(torus.points), Status::invalid_parameter);
 }
 
 TEST(Tiles, SharedScans)

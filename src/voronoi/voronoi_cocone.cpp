@@ -6,11 +6,13 @@
 #include "common/status_guard.h"
 #include "voronoi/cell_geometry.h"
 #include "voronoi/cgal_delaunay.h"
+#include "voronoi/tile_messages.h"
 #include "voronoi/tiled_delaunay.h"
 #include "voronoi/tiling.h"
 #include "voronoi/voronoi_cocone_impl.h"
 
 #include <pcl/cocone/core/denoise.h>
+#include <pcl/cocone/core/tile_exchange.h>
 #include <pcl/cocone/parameters.h>
 #include <pcl/console/print.h>
 
@@ -373,6 +375,14 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
     return fail(Status::invalid_parameter,
                 "the cocone angle " + std::to_string(parameters.cocone_angle) +
                     " is outside " + kCoconeAngleRange.text());
+  // Several processes (core/tile_exchange.h): this one builds the tiles dealt to it.
+  TileExchange* const exchange = parameters.exchange.get();
+  const unsigned rank = exchange ? exchange->rank() : 0;
+  const unsigned ranks = exchange ? exchange->size() : 1;
+  if (ranks == 0 || rank >= ranks)
+    return fail(Status::invalid_parameter, "the tile exchange names process " +
+                                               std::to_string(rank) + " of " +
+                                               std::to_string(ranks));
   const std::size_t n = points.size();
   if (n >= static_cast<std::size_t>(kNoSample))
     return fail(Status::too_many_points,
@@ -520,7 +530,15 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
   const std::thread::id caller = std::this_thread::get_id();
   std::atomic<std::size_t> inserted{0};
   std::atomic<bool> cancelled{false};
-  const auto build_tiles = [&](unsigned tile_count) {
+  enum class Outcome
+  {
+    built,
+    outgrown,
+    handed_off
+  };
+  // distributed: the tiles are dealt out among the processes, tile t to process
+  // t mod ranks, and the root gathers the others' results.
+  const auto build_tiles = [&](unsigned tile_count, bool distributed) {
     // One tile needs no leaves: every sample is its own.
     const KdTiling tiling(d.centered, distinct, tile_count,
                           tile_count == 1 ? ~0u : kLeafSamples);
@@ -533,6 +551,10 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
           tile_of[tiling.order()[i]] = t;
       }
     contributions.assign(count, TileContribution());
+    std::vector<unsigned> mine;
+    for (unsigned t = 0; t < count; ++t)
+      if (!distributed || t % ranks == rank)
+        mine.push_back(t);
     std::vector<TileTriangulationStats> stats(count);
     std::vector<double> dt_time(count, 0), geometry_time(count, 0);
     std::atomic<bool> outgrown{false};
@@ -550,40 +572,56 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
         }
       }
     };
-    tbb::parallel_for(
-        std::size_t(0), std::size_t(count), std::size_t(1), [&](std::size_t t) {
-          if (outgrown)
-            return;
-          Clock::time_point tile_start = Clock::now();
-          const Eigen::AlignedBox3d& box = tiling.box();
-          DelaunayLocks locks(CGAL::Bbox_3(box.min().x(), box.min().y(), box.min().z(),
-                                           box.max().x(), box.max().y(), box.max().z()),
-                              kLockGrid);
-          // One thread: no locks, CGAL's sequential insertion.
-          Delaunay dt(Kernel(), parameters.threads == 1 ? nullptr : &locks);
-          stats[t] =
-              triangulateTile(tiling, unsigned(t), d.centered, tile_of, kHaloBudget, dt,
-                              on_inserted, [&] { return outgrown.load(); });
-          if (!stats[t].complete) {
-            outgrown = true;
-            return;
-          }
-          dt_time[t] = seconds_since(tile_start);
-          tile_start = Clock::now();
-          computeTileGeometry(dt, d.centered, tile_of, std::uint32_t(t), sin_theta, d,
-                              contributions[t]);
-          geometry_time[t] = seconds_since(tile_start);
-        });
-    if (outgrown)
-      return false;
+    tbb::parallel_for(std::size_t(0), mine.size(), std::size_t(1), [&](std::size_t k) {
+      const unsigned t = mine[k];
+      if (outgrown)
+        return;
+      Clock::time_point tile_start = Clock::now();
+      const Eigen::AlignedBox3d& box = tiling.box();
+      DelaunayLocks locks(CGAL::Bbox_3(box.min().x(), box.min().y(), box.min().z(),
+                                       box.max().x(), box.max().y(), box.max().z()),
+                          kLockGrid);
+      // One thread: no locks, CGAL's sequential insertion.
+      Delaunay dt(Kernel(), parameters.threads == 1 ? nullptr : &locks);
+      stats[t] = triangulateTile(tiling, t, d.centered, tile_of, kHaloBudget, dt,
+                                 on_inserted, [&] { return outgrown.load(); });
+      if (!stats[t].complete) {
+        outgrown = true;
+        return;
+      }
+      dt_time[t] = seconds_since(tile_start);
+      tile_start = Clock::now();
+      computeTileGeometry(dt, d.centered, tile_of, t, sin_theta, d, contributions[t]);
+      geometry_time[t] = seconds_since(tile_start);
+    });
+    bool complete = !outgrown;
+    if (distributed && ranks > 1) {
+      // Every process sends, even one whose tiles gave up, so that none waits.
+      const std::vector<std::vector<std::uint8_t>> messages = exchange->gatherToRoot(
+          rank == 0 ? std::vector<std::uint8_t>()
+                    : packTiles(tiling, mine, complete, d, contributions));
+      if (rank != 0)
+        return Outcome::handed_off;
+      if (messages.size() != ranks)
+        throw StageFailure{Status::internal_error,
+                           "the tile exchange returned " +
+                               std::to_string(messages.size()) + " messages for " +
+                               std::to_string(ranks) + " processes"};
+      for (unsigned r = 1; r < ranks; ++r)
+        if (!unpackTiles(messages[r], tiling, d, contributions))
+          complete = false;
+    }
+    if (!complete)
+      return Outcome::outgrown;
     for (unsigned t = 0; t < count; ++t) {
       delaunay_seconds += dt_time[t];
       geometry_seconds += geometry_time[t];
       triangulated += stats[t].local;
     }
     d.timings.tiles = count;
-    return true;
+    return Outcome::built;
   };
+  Outcome outcome = Outcome::built;
   status = runGuarded("the Delaunay triangulation", &message, [&] {
     runInArena(parameters.threads, [&] {
       d.pole_vector.assign(n, Eigen::Vector3d::Zero());
@@ -592,18 +630,22 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
       d.height.assign(n, std::numeric_limits<double>::quiet_NaN());
       d.radius.assign(n, std::numeric_limits<double>::quiet_NaN());
       d.unbounded.assign(n, 0);
-      if (!build_tiles(tiles)) {
+      outcome = build_tiles(tiles, true);
+      if (outcome == Outcome::outgrown) {
         PCL_DEBUG("[pcl::cocone::VoronoiCocone] a tile's halo outgrew %u times its "
                   "samples: one tile instead of %u\n",
                   kHaloBudget, tiles);
         inserted = 0;
-        build_tiles(1);
+        outcome = build_tiles(1, false);
       }
     });
     return Status::ok;
   });
   if (status != Status::ok)
     return fail(status, message);
+  if (outcome == Outcome::handed_off)
+    return fail(Status::not_computed,
+                "this process built its tiles and sent them to the root process");
   const double tile_phase = seconds_since(start);
   const double worked = delaunay_seconds + geometry_seconds;
   d.timings.delaunay = worked > 0 ? tile_phase * delaunay_seconds / worked : tile_phase;

@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -229,6 +230,27 @@ public:
   getNumberOfTiles() const
   {
     return voronoi_parameters_.tiles;
+  }
+
+  /** \brief Build the Voronoi diagram together with other processes (see
+   * core/tile_exchange.h; pcl_cocone_reconstruction_mpi sets an MPI one). Every process
+   * calls reconstruct() on the same cloud with the same parameters; the tiles
+   * (setNumberOfTiles) are dealt out among them. On the root (rank 0) reconstruct()
+   * gives the mesh a single process gives; on the others it gives no polygon and no
+   * error (getErrorMessage() is empty unless something failed there).
+   * \param[in] exchange the transport (pcl/cocone/core/tile_exchange.h); empty
+   *            (default): this process alone */
+  void
+  setTileExchange(std::shared_ptr<cocone::TileExchange> exchange)
+  {
+    voronoi_parameters_.exchange = std::move(exchange);
+  }
+  /** \brief Get the tile exchange (see setTileExchange).
+   * \return the transport; empty when this process works alone */
+  const std::shared_ptr<cocone::TileExchange>&
+  getTileExchange() const
+  {
+    return voronoi_parameters_.exchange;
   }
 
   /** \name Diagnostics of the last reconstruct()

@@ -13,10 +13,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 
 namespace pcl {
 namespace cocone {
+
+class TileExchange; // core/tile_exchange.h
 
 /** \brief A closed, open or half-open interval of valid values, in the unit of the
  * parameter it bounds. */
@@ -142,6 +145,11 @@ struct VoronoiParameters
    * one triangulation is built on every core); 1: one tile. Any value is valid; it is
    * capped at 1024 and at one tile per 128 distinct samples. */
   unsigned tiles = 0;
+  /** \brief Beyond the paper: the processes that build the diagram together
+   * (core/tile_exchange.h; the MPI driver sets it). The tiles are dealt out among
+   * them, the root joins their results, and the diagram is the same as without it.
+   * Empty (default): this process builds the whole diagram. */
+  std::shared_ptr<TileExchange> exchange;
 };
 
 /** \brief Parameters of BOUNDARY. rho and alpha default to the paper's practical

@@ -4,6 +4,7 @@
 #include <pcl/cocone/cocone_reconstruction.h>
 #include <pcl/cocone/core/cloud_samples.h>
 #include <pcl/cocone/core/reconstruction.h>
+#include <pcl/cocone/core/tile_exchange.h>
 #include <pcl/cocone/core/voronoi_cocone.h>
 #include <pcl/cocone/parameters.h>
 #include <pcl/console/print.h>
@@ -120,6 +121,10 @@ CoconeReconstruction<PointInT>::reconstructSelection(
   // The diagram takes about 60% of a run, the mesher the rest.
   const cocone::Status status =
       voronoi.compute(samples.points, cocone::progressPart(progress_, 0, 0.6));
+  // A process other than the root of a shared diagram has sent its tiles: done.
+  if (status == cocone::Status::not_computed && voronoi_parameters_.exchange &&
+      voronoi_parameters_.exchange->rank() != 0)
+    return;
   warning_message_ = cocone::describeSampleProblems(
       *input_, samples, voronoi.typicalSpacing(), "listed as unused");
   if (!warning_message_.empty())

@@ -1,0 +1,196 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The message of a process that built some of a diagram's tiles (tile_messages.h).
+// The samples of a tile are not named: both ends hold the same tiling, and a tile's
+// values follow its samples in the tiling's order.
+#include "voronoi/tile_messages.h"
+
+#include "common/status_guard.h"
+
+#include <cstring>
+#include <string>
+#include <type_traits>
+
+namespace pcl {
+namespace cocone {
+namespace detail {
+
+namespace {
+
+class Writer
+{
+public:
+  template <typename T>
+  void
+  put(const T& value)
+  {
+    static_assert(std::is_trivially_copyable<T>::value, "raw bytes only");
+    const auto* bytes = reinterpret_cast<const std::uint8_t*>(&value);
+    buffer.insert(buffer.end(), bytes, bytes + sizeof(T));
+  }
+
+  std::vector<std::uint8_t> buffer;
+};
+
+class Reader
+{
+public:
+  explicit Reader(const std::vector<std::uint8_t>& buffer) : buffer_(buffer) {}
+
+  template <typename T>
+  T
+  get()
+  {
+    if (buffer_.size() - position_ < sizeof(T))
+      throw StageFailure{Status::internal_error,
+                         "a tile message from another process is truncated"};
+    T value;
+    std::memcpy(&value, buffer_.data() + position_, sizeof(T));
+    position_ += sizeof(T);
+    return value;
+  }
+
+  std::size_t
+  remaining() const
+  {
+    return buffer_.size() - position_;
+  }
+
+  bool
+  atEnd() const
+  {
+    return position_ == buffer_.size();
+  }
+
+private:
+  const std::vector<std::uint8_t>& buffer_;
+  std::size_t position_ = 0;
+};
+
+[[noreturn]] void
+malformed(const std::string& what)
+{
+  throw StageFailure{Status::internal_error,
+                     "a tile message from another process " + what};
+}
+
+/** Calls \a visit(sample) for the samples of tile \a t, in the tiling's order. */
+template <typename Visit>
+void
+forEachSample(const KdTiling& tiling, unsigned t, const Visit& visit)
+{
+  for (std::uint32_t l = tiling.firstLeaf(t); l < tiling.firstLeaf(t + 1); ++l) {
+    const KdTiling::Node& leaf = tiling.leaf(l);
+    for (std::uint32_t i = leaf.first; i < leaf.last; ++i)
+      visit(tiling.order()[i]);
+  }
+}
+
+void
+putVector(Writer& out, const Eigen::Vector3d& v)
+{
+  out.put(v.x());
+  out.put(v.y());
+  out.put(v.z());
+}
+
+Eigen::Vector3d
+getVector(Reader& in)
+{
+  const double x = in.get<double>();
+  const double y = in.get<double>();
+  const double z = in.get<double>();
+  return {x, y, z};
+}
+
+} // namespace
+
+std::vector<std::uint8_t>
+packTiles(const KdTiling& tiling, const std::vector<unsigned>& tiles, bool complete,
+          const DiagramState& d, std::vector<TileContribution>& contributions)
+{
+  Writer out;
+  out.put(std::uint8_t(complete ? 1 : 0));
+  if (!complete)
+    return std::move(out.buffer);
+  out.put(std::uint32_t(tiles.size()));
+  for (const unsigned t : tiles) {
+    out.put(std::uint32_t(t));
+    forEachSample(tiling, t, [&](SampleIndex s) {
+      putVector(out, d.pole_vector[s]);
+      putVector(out, d.positive_pole[s]);
+      putVector(out, d.negative_pole[s]);
+      out.put(d.height[s]);
+      out.put(d.radius[s]);
+      out.put(d.unbounded[s]);
+    });
+    TileContribution& tile = contributions[t];
+    out.put(std::uint64_t(tile.cells.size()));
+    for (const std::array<SampleIndex, 4>& cell : tile.cells)
+      for (const SampleIndex s : cell)
+        out.put(s);
+    out.put(std::uint64_t(tile.marks.size()));
+    // Field by field: the struct's padding is no part of the message.
+    for (const MarkedTriangle& mark : tile.marks) {
+      for (const SampleIndex s : mark.vertex)
+        out.put(s);
+      out.put(mark.marked_by);
+    }
+    tile = TileContribution();
+  }
+  return std::move(out.buffer);
+}
+
+bool
+unpackTiles(const std::vector<std::uint8_t>& message, const KdTiling& tiling,
+            DiagramState& d, std::vector<TileContribution>& contributions)
+{
+  Reader in(message);
+  if (in.get<std::uint8_t>() == 0)
+    return false;
+  const std::size_t n = d.pole_vector.size();
+  const auto check_sample = [&](SampleIndex s, bool may_be_infinite) {
+    if (s < n || (may_be_infinite && s == kNoSample))
+      return s;
+    malformed("names sample " + std::to_string(s) + " of " + std::to_string(n));
+  };
+  const std::uint32_t count = in.get<std::uint32_t>();
+  for (std::uint32_t k = 0; k < count; ++k) {
+    const std::uint32_t t = in.get<std::uint32_t>();
+    if (t >= tiling.numTiles())
+      malformed("names tile " + std::to_string(t) + " of " +
+                std::to_string(tiling.numTiles()));
+    forEachSample(tiling, t, [&](SampleIndex s) {
+      d.pole_vector[s] = getVector(in);
+      d.positive_pole[s] = getVector(in);
+      d.negative_pole[s] = getVector(in);
+      d.height[s] = in.get<double>();
+      d.radius[s] = in.get<double>();
+      d.unbounded[s] = in.get<std::uint8_t>();
+    });
+    TileContribution& tile = contributions[t];
+    // Counts are checked against the bytes left before anything is allocated.
+    const std::uint64_t cells = in.get<std::uint64_t>();
+    if (cells > in.remaining() / (4 * sizeof(SampleIndex)))
+      malformed("is truncated");
+    tile.cells.resize(cells);
+    for (std::array<SampleIndex, 4>& cell : tile.cells)
+      for (int k = 0; k < 4; ++k)
+        cell[k] = check_sample(in.get<SampleIndex>(), k == 3);
+    const std::uint64_t marks = in.get<std::uint64_t>();
+    if (marks > in.remaining() / (3 * sizeof(SampleIndex) + 1))
+      malformed("is truncated");
+    tile.marks.resize(marks);
+    for (MarkedTriangle& mark : tile.marks) {
+      for (SampleIndex& s : mark.vertex)
+        s = check_sample(in.get<SampleIndex>(), false);
+      mark.marked_by = in.get<std::uint8_t>();
+    }
+  }
+  if (!in.atEnd())
+    malformed("has bytes beyond its last tile");
+  return true;
+}
+
+} // namespace detail
+} // namespace cocone
+} // namespace pcl
