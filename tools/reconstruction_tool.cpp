@@ -1,0 +1,258 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// pcl_cocone_reconstruction and pcl_cocone_reconstruction_mpi: reconstructs an oriented
+// 2-manifold (with boundary) through the samples with COCONE and boundary detection
+// (Dey et al. 2001, section 3.4) and writes it as PLY, VTK or OBJ, then reports the
+// mesh's topology so that a user can tell at once whether the surface came out closed
+// and manifold. The MPI driver runs the same tool in every process, with a TileExchange
+// (core/tile_exchange.h).
+#include "reconstruction_tool.h"
+
+#include "tool_common.h"
+
+#include <pcl/cocone/cocone_reconstruction.h>
+#include <pcl/cocone/core/mesh_topology.h>
+#include <pcl/cocone/io/writers.h>
+#include <pcl/console/print.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+using namespace pcl::cocone::tools;
+using pcl::cocone::TriangleIndices;
+
+namespace {
+
+CommandLine
+commandLine(bool distributed)
+{
+  std::string what = "reconstructs a triangle mesh through the samples with COCONE and "
+                     "boundary detection (Dey et al., IEEE Visualization 2001): closed "
+                     "surfaces come out closed, boundaries and undersampled parts stay "
+                     "open.";
+  if (distributed)
+    what += " Run it under mpirun: every process reads INPUT, the tiles of the Voronoi "
+            "diagram are dealt out among the processes, and rank 0 joins them and "
+            "writes the same mesh as pcl_cocone_reconstruction (docs/scaling.md).";
+  return CommandLine(
+      {distributed ? "pcl_cocone_reconstruction_mpi" : "pcl_cocone_reconstruction",
+       what,
+       "OUTPUT.{ply,vtk,obj}",
+       {".ply", ".vtk", ".obj"},
+       "the mesh: binary PLY, legacy ASCII VTK or OBJ; vertex i is input point i "
+       "(points with a NaN coordinate, and points far beyond the cloud's scale, are left "
+       "out and the ids after them renumbered)"},
+      {coconeAngleOption(),
+       ratioBoundOption(0.99, "BOUNDARY's ratio bound r_p/h_p <= R for flat samples"),
+       normalAngleOption(),
+       {"-boundary_ratio", ValueKind::real, "B",
+        "a hole larger than B local sample spacings is a true boundary and stays open; "
+        "smaller holes are stitched; raise it to close a scan's cut",
+        2, "", pcl::cocone::kTrueBoundaryRatioRange},
+       flagOption(
+           "-no_boundary",
+           "no boundary detection: the original COCONE, for densely sampled closed "
+           "smooth surfaces only"),
+       flagOption("-no_stitch", "leave every hole open"),
+       denoiseOption(),
+       tilesOption(),
+       threadsOption(),
+       verboseOption()});
+}
+
+/** When the reconstruction found the cloud too sparse for boundary detection, sets
+ * \a note to say so, with the way out, and returns true. */
+bool
+sparseNote(const pcl::CoconeReconstruction<pcl::PointXYZ>& cocone, std::string& note)
+{
+  const pcl::cocone::ReconstructionStatistics& report = cocone.getReport();
+  if (!report.tooSparseForBoundaryDetection())
+    return false;
+  note = std::to_string(report.distinct_boundary_samples) + " of " +
+         std::to_string(report.distinct_samples) + " points are boundary samples";
+  // With values far from the defaults, the parameters rather than the cloud may be the
+  // reason (-alpha 0.001 flags every sample of any cloud): name them.
+  const pcl::CoconeReconstruction<pcl::PointXYZ> defaults;
+  std::string changed;
+  const auto compare = [&](const char* option, double value, double default_value) {
+    if (value != default_value)
+      changed += std::string(changed.empty() ? "" : ", ") + option + " " +
+                 formatNumber(value) + " (default " + formatNumber(default_value) + ")";
+  };
+  compare("-theta", cocone.getCoconeAngle(), defaults.getCoconeAngle());
+  compare("-rho", cocone.getRatioBound(), defaults.getRatioBound());
+  compare("-alpha", cocone.getNormalAngle(), defaults.getNormalAngle());
+  if (changed.empty())
+    note += ": the cloud is too sparse for boundary detection at rho " +
+            formatNumber(cocone.getRatioBound()) +
+            ", so it was reconstructed without it (every hole closed where it can be); "
+            "a larger -rho keeps true boundaries open";
+  else
+    note += " with " + changed +
+            ": these values flag most samples, so the cloud was reconstructed without "
+            "boundary detection; try the defaults or a larger -rho";
+  return true;
+}
+
+std::vector<pcl::Vertices>
+reconstruct(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLine& cmd,
+            const std::shared_ptr<pcl::cocone::TileExchange>& exchange,
+            pcl::Indices& far_points)
+{
+  pcl::CoconeReconstruction<pcl::PointXYZ> cocone;
+  cocone.setInputCloud(xyz);
+  cocone.setCoconeAngle(cmd.value("-theta"));
+  cocone.setRatioBound(cmd.value("-rho"));
+  cocone.setNormalAngle(cmd.value("-alpha"));
+  cocone.setTrueBoundaryRatio(cmd.value("-boundary_ratio"));
+  cocone.setBoundaryDetection(!cmd.flag("-no_boundary"));
+  cocone.setHoleStitching(!cmd.flag("-no_stitch"));
+  cocone.setNumberOfThreads(cmd.count("-threads"));
+  unsigned tiles = static_cast<unsigned>(cmd.count("-tiles"));
+  // Automatic, with several processes: one tile each.
+  if (exchange && tiles == 0)
+    tiles = exchange->size();
+  cocone.setNumberOfTiles(tiles);
+  cocone.setTileExchange(exchange);
+  cocone.setDenoise(denoiseMode(cmd));
+  cocone.setProgressCallback(terminalProgress());
+  if (cmd.verbose())
+    printDetail("Parameters",
+                "theta " + formatNumber(cocone.getCoconeAngle()) + " rad, rho " +
+                    formatNumber(cocone.getRatioBound()) + ", alpha " +
+                    formatNumber(cocone.getNormalAngle()) + " rad, boundary ratio " +
+                    formatNumber(cocone.getTrueBoundaryRatio()) +
+                    ", boundary detection " +
+                    (cocone.getBoundaryDetection() ? "on" : "off") + ", stitching " +
+                    (cocone.getHoleStitching() ? "on" : "off"));
+
+  std::vector<pcl::Vertices> polygons;
+  if (exchange && exchange->rank() != 0) {
+    // Another process's share of the tiles: it sends them to rank 0 and is done.
+    cocone.reconstruct(polygons);
+    if (!cocone.getErrorMessage().empty())
+      fail(cocone.getErrorMessage());
+    return polygons;
+  }
+  computeStage("the COCONE surface", "triangles",
+               [&](std::string& reason) -> std::optional<std::size_t> {
+                 cocone.reconstruct(polygons);
+                 // Coplanar input and the like give no polygon; so does a cloud too
+                 // sparse for the cocones to choose any triangle.
+                 if (polygons.empty()) {
+                   reason = cocone.getErrorMessage();
+                   if (reason.empty() && sparseNote(cocone, reason))
+                     reason = "no triangle: " + reason;
+                   return std::nullopt;
+                 }
+                 return polygons.size();
+               });
+
+  printWarning(cocone.getWarningMessage());
+  far_points = cocone.getFarIndices();
+  // The library's warning is silenced without -v (QuietPcl): repeat it as a note.
+  std::string note;
+  if (sparseNote(cocone, note))
+    pcl::console::print_info("note: %s\n", note.c_str());
+  if (cmd.verbose()) {
+    const pcl::cocone::ReconstructionStatistics& report = cocone.getReport();
+    std::size_t boundary_samples = 0;
+    for (const std::uint8_t flag : cocone.getBoundarySamples())
+      boundary_samples += flag;
+    printDetail("Boundary samples", std::to_string(boundary_samples));
+    printDetail("Candidate triangles",
+                std::to_string(cocone.getNumberOfCandidateTriangles()));
+    printDetail("Lid triangles removed",
+                std::to_string(cocone.getNumberOfLidTriangles()));
+    printDetail("Pruned triangles",
+                std::to_string(cocone.getNumberOfPrunedTriangles()));
+    printDetail("Walked triangles", std::to_string(report.walked_triangles));
+    printDetail("Removed at pinched vertices",
+                std::to_string(report.pinch_removed_triangles));
+    printDetail("Stitched holes",
+                std::to_string(cocone.getNumberOfStitchedHoles()) + " (" +
+                    std::to_string(cocone.getNumberOfStitchedTriangles()) +
+                    " triangles)");
+    printDetail("Samples put back", std::to_string(report.inserted_samples));
+    printDetail("Crossing triangles removed",
+                std::to_string(report.crossing_triangles));
+    printDetail("Open boundary loops",
+                std::to_string(cocone.getBoundaryLoops().size()));
+    printDetail("Unused points", std::to_string(cocone.getUnusedIndices().size()));
+  }
+  return polygons;
+}
+
+/** The polygons as triangles of input indices; a polygon that is no triangle would be
+ * a bug of the class. */
+std::vector<TriangleIndices>
+asTriangles(const std::vector<pcl::Vertices>& polygons)
+{
+  std::vector<TriangleIndices> triangles;
+  triangles.reserve(polygons.size());
+  for (const pcl::Vertices& polygon : polygons) {
+    if (polygon.vertices.size() != 3)
+      fail("internal error: the reconstruction returned a polygon that is no triangle");
+    TriangleIndices t;
+    for (int k = 0; k < 3; ++k) {
+      if (polygon.vertices[k] < 0)
+        fail("internal error: a triangle uses a negative index");
+      t[k] = static_cast<std::uint32_t>(polygon.vertices[k]);
+    }
+    triangles.push_back(t);
+  }
+  return triangles;
+}
+
+} // namespace
+
+namespace pcl {
+namespace cocone {
+namespace tools {
+
+int
+runReconstructionTool(int argc, char** argv,
+                      const std::shared_ptr<pcl::cocone::TileExchange>& exchange)
+{
+  CommandLine cmd = commandLine(exchange != nullptr);
+  cmd.parse(argc, argv);
+
+  const pcl::PointCloud<pcl::PointXYZ>::Ptr xyz =
+      toXyz(loadCloud(cmd.input(), cmd.verbose()));
+  pcl::Indices far_points;
+  const std::vector<pcl::Vertices> polygons =
+      reconstruct(xyz, cmd, exchange, far_points);
+  if (exchange && exchange->rank() != 0)
+    return 0;
+  // The finite points that are not far, in input order, the triangles renumbered: the
+  // io library's mesh as written, shared with the Python module's Mesh.save.
+  pcl::cocone::MeshForWriting mesh;
+  std::string error;
+  if (!pcl::cocone::meshForWriting(*xyz, asTriangles(polygons), far_points, mesh,
+                                   &error))
+    fail("internal error: " + error);
+  if (mesh.non_finite_dropped > 0)
+    pcl::console::print_info("note: %zu non-finite input points dropped; vertex ids "
+                             "renumbered\n",
+                             mesh.non_finite_dropped);
+  if (mesh.far_dropped > 0)
+    pcl::console::print_info("note: %zu far input points dropped; vertex ids "
+                             "renumbered\n",
+                             mesh.far_dropped);
+  saveMesh(cmd.output(), mesh.vertices, mesh.triangles);
+
+  const pcl::cocone::MeshTopology topology =
+      pcl::cocone::analyzeTriangleMesh(mesh.triangles);
+  pcl::console::print_info(
+      "vertices used %zu, triangles %zu, boundary loops %zu, Euler characteristic %ld, "
+      "closed %s, manifold %s\n",
+      topology.vertices, topology.triangles, topology.boundary_loops.size(),
+      topology.eulerCharacteristic(), topology.isClosed() ? "yes" : "no",
+      topology.isManifold() ? "yes" : "no");
+  return 0;
+}
+
+} // namespace tools
+} // namespace cocone
+} // namespace pcl
