@@ -192,7 +192,12 @@ struct IntervalBall
 IntervalBall
 circumballBound(CellHandle c)
 {
-  using IntervalKernel = CGAL::Simple_cartesian<CGAL::Interval_nt<true>>;
+  // Upward rounding for the whole construction rather than for each operation (the
+  // protected intervals switch the rounding mode twice an operation, which made this
+  // the hot spot of the halo search); restored when the function returns, before any
+  // filtered predicate runs again.
+  CGAL::Protect_FPU_rounding<true> upward;
+  using IntervalKernel = CGAL::Simple_cartesian<CGAL::Interval_nt<false>>;
   std::array<IntervalKernel::Point_3, 4> q;
   for (int j = 0; j < 4; ++j) {
     const Point& p = c->vertex(j)->point();
@@ -200,7 +205,7 @@ circumballBound(CellHandle c)
   }
   // CGAL's formula, in intervals; a denominator that may be 0 leaves the box
   // unbounded (every leaf is tested).
-  using Interval = CGAL::Interval_nt<true>;
+  using Interval = CGAL::Interval_nt<false>;
   Interval num_x, num_y, num_z, den;
   CGAL::determinants_for_circumcenterC3(
       q[0].x(), q[0].y(), q[0].z(), q[1].x(), q[1].y(), q[1].z(), q[2].x(), q[2].y(),
