@@ -665,6 +665,13 @@ TEST_F(Tools, ReconstructionDropsNanPointsAndRenumbersVertices)
   EXPECT_TRUE(s.closed);
   EXPECT_TRUE(s.manifold);
   EXPECT_EQ(s.euler, 2);
+  // Every point is accounted for.
+  EXPECT_NE(r.out.find("unused points " + std::to_string(dropped) + " of " +
+                       std::to_string(kSpherePoints + dropped) + ": " +
+                       std::to_string(dropped) +
+                       " non-finite, 0 far, 0 duplicates, 0 left out of the mesh"),
+            std::string::npos)
+      << r.out;
 
   // The file holds the finite points in input order; every id is one of them.
   const pcl::PCLPointCloud2 vertices = loadCloud(output);
@@ -675,6 +682,29 @@ TEST_F(Tools, ReconstructionDropsNanPointsAndRenumbersVertices)
     ASSERT_EQ(valueAt<float>(vertices, i, *x), sphere_[i].x) << "vertex " << i;
   EXPECT_EQ(static_cast<long>(loadTriangles(output, kSpherePoints).size()),
             s.triangles);
+}
+
+TEST_F(Tools, ReconstructionSummaryCountsDuplicatesAndOutliers)
+{
+  // The sphere, its first 25 points repeated, and 3 lone points inside it: outliers
+  // that no triangle of a manifold surface through the sphere can use.
+  std::vector<pcl::PointXYZ> points = sphere_;
+  points.insert(points.end(), sphere_.begin(), sphere_.begin() + 25);
+  points.emplace_back(0.0f, 0.0f, 0.0f);
+  points.emplace_back(0.1f, 0.05f, 0.0f);
+  points.emplace_back(-0.05f, 0.1f, 0.02f);
+  writeXyz("sphere_extra.xyz", points);
+  const ToolRun r = run(kReconstruction, {path("sphere_extra.xyz").string(),
+                                          path("sphere_extra.ply").string()});
+  expectSuccess(r);
+  const Summary s = meshSummary(r.out);
+  ASSERT_TRUE(s.found);
+  EXPECT_TRUE(s.closed);
+  EXPECT_EQ(s.vertices, static_cast<long>(kSpherePoints));
+  EXPECT_NE(r.out.find("unused points 28 of " + std::to_string(points.size()) +
+                       ": 0 non-finite, 0 far, 25 duplicates, 3 left out of the mesh"),
+            std::string::npos)
+      << r.out;
 }
 
 TEST_F(Tools, ReconstructionOptionsAreAcceptedAndVerboseShowsTheStages)

@@ -15,6 +15,7 @@
 #include <pcl/cocone/io/writers.h>
 #include <pcl/console/print.h>
 
+#include <algorithm>
 #include <array>
 #include <string>
 #include <vector>
@@ -98,7 +99,8 @@ sparseNote(const pcl::CoconeReconstruction<pcl::PointXYZ>& cocone, std::string& 
 std::vector<pcl::Vertices>
 reconstruct(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLine& cmd,
             const std::shared_ptr<pcl::cocone::TileExchange>& exchange,
-            pcl::Indices& far_points)
+            pcl::Indices& far_points, std::size_t& unused_points,
+            std::size_t& distinct_points)
 {
   pcl::CoconeReconstruction<pcl::PointXYZ> cocone;
   cocone.setInputCloud(xyz);
@@ -151,6 +153,8 @@ reconstruct(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& xyz, const CommandLi
 
   printWarning(cocone.getWarningMessage());
   far_points = cocone.getFarIndices();
+  unused_points = cocone.getUnusedIndices().size();
+  distinct_points = cocone.getReport().distinct_samples;
   // The library's warning is silenced without -v (QuietPcl): repeat it as a note.
   std::string note;
   if (sparseNote(cocone, note))
@@ -221,8 +225,9 @@ runReconstructionTool(int argc, char** argv,
   const pcl::PointCloud<pcl::PointXYZ>::Ptr xyz =
       toXyz(loadCloud(cmd.input(), cmd.verbose()));
   pcl::Indices far_points;
+  std::size_t unused = 0, distinct = 0;
   const std::vector<pcl::Vertices> polygons =
-      reconstruct(xyz, cmd, exchange, far_points);
+      reconstruct(xyz, cmd, exchange, far_points, unused, distinct);
   if (exchange && exchange->rank() != 0)
     return 0;
   // The finite points that are not far, in input order, the triangles renumbered: the
@@ -250,6 +255,18 @@ runReconstructionTool(int argc, char** argv,
       topology.vertices, topology.triangles, topology.boundary_loops.size(),
       topology.eulerCharacteristic(), topology.isClosed() ? "yes" : "no",
       topology.isManifold() ? "yes" : "no");
+  // Every input point is in the mesh or accounted for here (getUnusedIndices()): the
+  // points with a NaN coordinate or far beyond the cloud, the repeats of a position
+  // (their first occurrence is the vertex), and those the mesh leaves out: outliers,
+  // and samples of parts too thin or too sparse for a manifold through them.
+  const std::size_t measured = xyz->size() - mesh.non_finite_dropped - mesh.far_dropped;
+  const std::size_t duplicates = measured - std::min(measured, distinct);
+  const std::size_t dropped = mesh.non_finite_dropped + mesh.far_dropped + duplicates;
+  pcl::console::print_info(
+      "unused points %zu of %zu: %zu non-finite, %zu far, %zu duplicates, %zu left out "
+      "of the mesh (outliers, undersampled parts)\n",
+      unused, xyz->size(), mesh.non_finite_dropped, mesh.far_dropped, duplicates,
+      unused - std::min(unused, dropped));
   return 0;
 }
 
