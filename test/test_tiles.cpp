@@ -154,15 +154,15 @@ expectTilingChangesNothing(const std::vector<Eigen::Vector3d>& points,
 TEST(Tiles, RandomSamplesOfClosedAndOpenShapes)
 {
   // At 20k samples the halo of 2 tiles holds 0.7 to 1 times the tile's own samples
-  // on the torus, open cylinder and saddle; the hemisphere's cells reach down to its
-  // centre and the cube's flat faces cost many conflict tests, so those fall back to
-  // one tile, as do 7 and 64 tiles. Either way the diagram must not change.
+  // on the torus, cube, open cylinder and saddle; the hemisphere's cells reach down to
+  // its centre, so it falls back to one tile, as do 7 and 64 tiles. Whether a tile
+  // gives up does not depend on the thread schedule, so the first four must tile every
+  // run. Either way the diagram must not change.
   for (const Shape shape : {Shape::torus, Shape::cube, Shape::open_cylinder,
                             Shape::monkey_saddle, Shape::hemisphere}) {
     const shapes::SampledShape sampled = shapes::sampleRandom(shape, 20000, 3);
     expectTilingChangesNothing(sampled.points, sampled.name, {2, 7, 64},
-                               shape == Shape::hemisphere || shape == Shape::cube ? 0
-                                                                                  : 2);
+                               shape == Shape::hemisphere ? 0 : 2);
   }
 }
 

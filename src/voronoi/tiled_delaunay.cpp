@@ -8,6 +8,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <CGAL/Interval_nt.h>
 #include <CGAL/Simple_cartesian.h>
@@ -21,6 +22,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 namespace pcl {
 namespace cocone {
@@ -29,7 +31,7 @@ namespace detail {
 namespace {
 
 // Conflict tests a tile may spend, per sample its budget allows, before it gives up.
-constexpr std::size_t kTestsPerSample = 32;
+constexpr std::size_t kTestsPerSample = 48;
 
 /** The leaves a tile triangulates, and those still to insert. */
 class LocalLeaves
@@ -54,6 +56,7 @@ public:
   {
     return local_[l] != 0;
   }
+
   std::size_t
   pendingCount() const
   {
@@ -294,6 +297,8 @@ triangulateTile(const KdTiling& tiling, unsigned tile,
       }
     }
   };
+  using KeyedCell = std::pair<std::array<SampleIndex, 4>, CellHandle>;
+  std::vector<KeyedCell> own_cells;
   while (true) {
     if (stats.local + leaves.pendingCount() > budget ||
         tests > kTestsPerSample * budget || (give_up && give_up()))
@@ -333,17 +338,35 @@ triangulateTile(const KdTiling& tiling, unsigned tile,
     // it? If so, the leaves that may hold one join the halo.
     const std::size_t test_limit = kTestsPerSample * budget;
     std::size_t cells_seen = 0;
+    // The cells at own samples, in the order of their sorted samples: the cells come
+    // out of the triangulation in an order set by the thread schedule of the
+    // insertion, and a leaf found in conflict is not tested again, so the count of
+    // tests, and with it whether the tile gives up, would otherwise depend on it.
+    own_cells.clear();
     for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
+      std::array<SampleIndex, 4> key;
+      bool at_own_sample = false;
+      for (int j = 0; j < 4; ++j) {
+        const VertexHandle v = c->vertex(j);
+        key[j] = v == infinite ? kNoSample : v->info();
+        at_own_sample = at_own_sample || owned(v);
+      }
+      if (!at_own_sample)
+        continue;
+      std::sort(key.begin(), key.end());
+      own_cells.emplace_back(key, c);
+    }
+    tbb::parallel_sort(own_cells.begin(), own_cells.end(),
+                       [](const KeyedCell& a, const KeyedCell& b) {
+                         return a.first < b.first;
+                       });
+    for (const KeyedCell& keyed : own_cells) {
+      const CellHandle c = keyed.second;
       // Give up as soon as the budget is spent, not at the end of the round: a round
       // on a tile whose cells reach across the cloud costs more than the whole cloud.
       if (stats.local + leaves.pendingCount() > budget || tests > test_limit ||
           (give_up && (++cells_seen & 0xfffu) == 0 && give_up()))
         return stats;
-      bool at_own_sample = false;
-      for (int j = 0; j < 4 && !at_own_sample; ++j)
-        at_own_sample = owned(c->vertex(j));
-      if (!at_own_sample)
-        continue;
       const int at_infinity = c->has_vertex(infinite) ? c->index(infinite) : -1;
       if (at_infinity < 0) {
         // The circumcenter in interval arithmetic: its box holds the true center
