@@ -8,7 +8,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <CGAL/Interval_nt.h>
 #include <CGAL/Simple_cartesian.h>
@@ -22,7 +21,6 @@
 #include <numeric>
 #include <stdexcept>
 #include <thread>
-#include <utility>
 
 namespace pcl {
 namespace cocone {
@@ -30,8 +28,10 @@ namespace detail {
 
 namespace {
 
-// Conflict tests a tile may spend, per sample its budget allows, before it gives up.
-constexpr std::size_t kTestsPerSample = 48;
+// Leaves a tile may test for conflicts, counted once per cell that reaches them, per
+// sample its budget allows, before it gives up. Each costs up to a leaf's samples in
+// exact tests.
+constexpr std::size_t kLeafTestsPerSample = 16;
 
 /** The leaves a tile triangulates, and those still to insert. */
 class LocalLeaves
@@ -46,17 +46,23 @@ public:
   {
     if (local_[l])
       return;
-    local_[l] = 1;
+    local_[l] = kPending;
     pending_.push_back(l);
     const KdTiling::Node& leaf = tiling_.leaf(l);
     pending_count_ += leaf.last - leaf.first;
   }
+  /** Whether leaf \a l was added, in this round or before. */
   bool
   isLocal(std::uint32_t l) const
   {
     return local_[l] != 0;
   }
-
+  /** Whether leaf \a l was inserted in an earlier round. */
+  bool
+  isInserted(std::uint32_t l) const
+  {
+    return local_[l] == kInserted;
+  }
   std::size_t
   pendingCount() const
   {
@@ -72,6 +78,7 @@ public:
     // function of the set alone (the triangulation is anyway; this keeps runs alike).
     std::sort(pending_.begin(), pending_.end());
     for (const std::uint32_t l : pending_) {
+      local_[l] = kInserted;
       const KdTiling::Node& leaf = tiling_.leaf(l);
       samples.insert(samples.end(), tiling_.order().begin() + leaf.first,
                      tiling_.order().begin() + leaf.last);
@@ -82,6 +89,7 @@ public:
   }
 
 private:
+  static constexpr char kPending = 1, kInserted = 2;
   const KdTiling& tiling_;
   std::vector<char> local_;
   std::vector<std::uint32_t> pending_;
@@ -280,15 +288,21 @@ triangulateTile(const KdTiling& tiling, unsigned tile,
   // A leaf joins the halo when one of its samples conflicts with cell c (lies inside
   // its circumball, with CGAL's exact predicate and symbolic perturbation, the ones
   // that built the triangulation): the box tests only choose the leaves to test.
-  // Each test is counted: where the balls are huge and touch much of the cloud (a
-  // sphere), the tests alone would cost more than one whole triangulation.
-  std::size_t tests = 0;
+  // The leaves tested are counted, once per cell that reaches them: where the balls
+  // are huge and touch much of the cloud (a sphere), the tests alone would cost more
+  // than one whole triangulation. A leaf already brought into the halo in this round
+  // is not tested again but still counted: the cells come out of the concurrent
+  // triangulation in an order set by the thread schedule, and the count, and with it
+  // whether the tile gives up, must not depend on it.
+  std::size_t leaf_tests = 0;
   const auto add_if_in_conflict = [&](std::uint32_t l, CellHandle c) {
+    if (leaves.isInserted(l))
+      return;
+    ++leaf_tests;
     if (leaves.isLocal(l))
       return;
     const KdTiling::Node& leaf = tiling.leaf(l);
     for (std::uint32_t i = leaf.first; i < leaf.last; ++i) {
-      ++tests;
       const Eigen::Vector3d& q = points[tiling.order()[i]];
       if (dt.side_of_sphere(c, Point(q.x(), q.y(), q.z()), true) ==
           CGAL::ON_BOUNDED_SIDE) {
@@ -297,11 +311,9 @@ triangulateTile(const KdTiling& tiling, unsigned tile,
       }
     }
   };
-  using KeyedCell = std::pair<std::array<SampleIndex, 4>, CellHandle>;
-  std::vector<KeyedCell> own_cells;
   while (true) {
     if (stats.local + leaves.pendingCount() > budget ||
-        tests > kTestsPerSample * budget || (give_up && give_up()))
+        leaf_tests > kLeafTestsPerSample * budget || (give_up && give_up()))
       return stats;
     const std::vector<SampleIndex> fresh = leaves.takePending();
     stats.local += fresh.size();
@@ -336,37 +348,19 @@ triangulateTile(const KdTiling& tiling, unsigned tile,
 
     // Every cell at an own sample: may a sample outside tile and halo conflict with
     // it? If so, the leaves that may hold one join the halo.
-    const std::size_t test_limit = kTestsPerSample * budget;
+    const std::size_t test_limit = kLeafTestsPerSample * budget;
     std::size_t cells_seen = 0;
-    // The cells at own samples, in the order of their sorted samples: the cells come
-    // out of the triangulation in an order set by the thread schedule of the
-    // insertion, and a leaf found in conflict is not tested again, so the count of
-    // tests, and with it whether the tile gives up, would otherwise depend on it.
-    own_cells.clear();
     for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
-      std::array<SampleIndex, 4> key;
-      bool at_own_sample = false;
-      for (int j = 0; j < 4; ++j) {
-        const VertexHandle v = c->vertex(j);
-        key[j] = v == infinite ? kNoSample : v->info();
-        at_own_sample = at_own_sample || owned(v);
-      }
-      if (!at_own_sample)
-        continue;
-      std::sort(key.begin(), key.end());
-      own_cells.emplace_back(key, c);
-    }
-    tbb::parallel_sort(own_cells.begin(), own_cells.end(),
-                       [](const KeyedCell& a, const KeyedCell& b) {
-                         return a.first < b.first;
-                       });
-    for (const KeyedCell& keyed : own_cells) {
-      const CellHandle c = keyed.second;
       // Give up as soon as the budget is spent, not at the end of the round: a round
       // on a tile whose cells reach across the cloud costs more than the whole cloud.
-      if (stats.local + leaves.pendingCount() > budget || tests > test_limit ||
+      if (stats.local + leaves.pendingCount() > budget || leaf_tests > test_limit ||
           (give_up && (++cells_seen & 0xfffu) == 0 && give_up()))
         return stats;
+      bool at_own_sample = false;
+      for (int j = 0; j < 4 && !at_own_sample; ++j)
+        at_own_sample = owned(c->vertex(j));
+      if (!at_own_sample)
+        continue;
       const int at_infinity = c->has_vertex(infinite) ? c->index(infinite) : -1;
       if (at_infinity < 0) {
         // The circumcenter in interval arithmetic: its box holds the true center

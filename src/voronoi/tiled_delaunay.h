@@ -37,7 +37,8 @@ struct TileTriangulationStats
  * predicate and symbolic perturbation. The halo may grow more than needed, never less.
  *
  * Stops, with complete == false, once tile and halo would exceed \a halo_factor times
- * the tile's own samples plus 2048, or its conflict tests 48 per sample of that budget,
+ * the tile's own samples plus 2048, or the leaves it tests 16 per sample of that budget
+ * (a leaf counted once per cell whose conflicts it is tested for, whatever the order),
  * or when \a give_up returns true (checked between rounds and every 4096 cells tested).
  * \a on_inserted is called on the thread that runs the tile, with counts of samples
  * inserted: about every 65536, and the rest at the end of each round. */
