@@ -707,6 +707,58 @@ TEST_F(Tools, ReconstructionSummaryCountsDuplicatesAndOutliers)
       << r.out;
 }
 
+TEST_F(Tools, ReconstructionAsIndependentJobsWritesTheSameMesh)
+{
+  // A random torus, which 3 tiles really cut (a sphere's tiles fall back to one).
+  std::vector<pcl::PointXYZ> torus;
+  for (const Eigen::Vector3d& p :
+       pcl::cocone::test::sampleRandom(pcl::cocone::test::Shape::torus, 20000, 4)
+           .points)
+    torus.emplace_back(float(p.x()), float(p.y()), float(p.z()));
+  writeXyz("torus.xyz", torus);
+  const std::string input = path("torus.xyz").string();
+  const ToolRun one = run(kReconstruction, {input, path("torus_1.ply").string()});
+  expectSuccess(one);
+
+  const std::string output = path("torus_jobs.ply").string();
+  const auto job = [&](int r, const Args& extra = {}) {
+    Args args{input, output, "-jobs", "3", "-job", std::to_string(r)};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run(kReconstruction, args);
+  };
+  // Job 0 first: the other jobs' tiles are missing.
+  expectOneLineFailure(job(0), "torus_jobs.ply.job-1-of-3.tiles is missing");
+  // Job 1 with another cocone angle: job 0 refuses its tiles.
+  expectSuccess(job(1, {"-theta", "0.3"}));
+  expectSuccess(job(2));
+  expectOneLineFailure(job(0), "was made from another input or other options");
+  const ToolRun first = job(1);
+  expectSuccess(first);
+  EXPECT_NE(
+      first.out.find("job 1 of 3: tiles written to " + output + ".job-1-of-3.tiles"),
+      std::string::npos)
+      << first.out;
+  const ToolRun last = job(0, {"-v"});
+  expectSuccess(last);
+  EXPECT_NE(last.out.find("in 3 tiles"), std::string::npos) << last.out;
+  EXPECT_TRUE(readText(output) == readText(path("torus_1.ply")))
+      << "the jobs' mesh differs from one run's";
+  // Job 0 removes the tiles once the mesh is written.
+  EXPECT_FALSE(fs::exists(output + ".job-1-of-3.tiles"));
+  EXPECT_FALSE(fs::exists(output + ".job-2-of-3.tiles"));
+
+  // A truncated file fails with its reason.
+  expectSuccess(job(1));
+  expectSuccess(job(2));
+  fs::resize_file(output + ".job-2-of-3.tiles", 400);
+  expectOneLineFailure(job(0), "job-2-of-3.tiles is truncated");
+  // Job numbers are checked before anything is loaded.
+  expectArgumentError(run(kReconstruction, {input, output, "-job", "1"}),
+                      "-job needs -jobs");
+  expectArgumentError(run(kReconstruction, {input, output, "-jobs", "2", "-job", "2"}),
+                      "-job 2 must be below -jobs 2");
+}
+
 TEST_F(Tools, ReconstructionOptionsAreAcceptedAndVerboseShowsTheStages)
 {
   const ToolRun r = run(kReconstruction,

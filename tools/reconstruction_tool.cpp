@@ -8,6 +8,7 @@
 // (core/tile_exchange.h).
 #include "reconstruction_tool.h"
 
+#include "job_files.h"
 #include "tool_common.h"
 
 #include <pcl/cocone/cocone_reconstruction.h>
@@ -17,6 +18,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
+#include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -36,6 +40,34 @@ commandLine(bool distributed)
     what += " Run it under mpirun: every process reads INPUT, the tiles of the Voronoi "
             "diagram are dealt out among the processes, and rank 0 joins them and "
             "writes the same mesh as pcl_cocone_reconstruction (docs/scaling.md).";
+  std::vector<Option> options{
+      coconeAngleOption(),
+      ratioBoundOption(0.99, "BOUNDARY's ratio bound r_p/h_p <= R for flat samples"),
+      normalAngleOption(),
+      {"-boundary_ratio", ValueKind::real, "B",
+       "a hole larger than B local sample spacings is a true boundary and stays open; "
+       "smaller holes are stitched; raise it to close a scan's cut",
+       2, "", pcl::cocone::kTrueBoundaryRatioRange},
+      flagOption(
+          "-no_boundary",
+          "no boundary detection: the original COCONE, for densely sampled closed "
+          "smooth surfaces only"),
+      flagOption("-no_stitch", "leave every hole open"),
+      denoiseOption(),
+      tilesOption(),
+      threadsOption()};
+  if (!distributed) {
+    // Tiles as independent jobs (job_files.h).
+    options.push_back(
+        {"-jobs", ValueKind::integer, "N",
+         "run as N independent jobs, e.g. a Slurm job array: jobs 1 to N-1 write their "
+         "tiles next to OUTPUT, then job 0 joins them and writes the mesh (README)",
+         0, "0 = one job", pcl::cocone::ParameterRange{0, 1024, false, false}});
+    options.push_back({"-job", ValueKind::integer, "R",
+                       "which of the -jobs N jobs this is, 0 to N-1; run 0 last", 0, "",
+                       pcl::cocone::ParameterRange{0, 1023, false, false}});
+  }
+  options.push_back(verboseOption());
   return CommandLine(
       {distributed ? "pcl_cocone_reconstruction_mpi" : "pcl_cocone_reconstruction",
        what,
@@ -44,22 +76,42 @@ commandLine(bool distributed)
        "the mesh: binary PLY, legacy ASCII VTK or OBJ; vertex i is input point i "
        "(points with a NaN coordinate, and points far beyond the cloud's scale, are left "
        "out and the ids after them renumbered)"},
-      {coconeAngleOption(),
-       ratioBoundOption(0.99, "BOUNDARY's ratio bound r_p/h_p <= R for flat samples"),
-       normalAngleOption(),
-       {"-boundary_ratio", ValueKind::real, "B",
-        "a hole larger than B local sample spacings is a true boundary and stays open; "
-        "smaller holes are stitched; raise it to close a scan's cut",
-        2, "", pcl::cocone::kTrueBoundaryRatioRange},
-       flagOption(
-           "-no_boundary",
-           "no boundary detection: the original COCONE, for densely sampled closed "
-           "smooth surfaces only"),
-       flagOption("-no_stitch", "leave every hole open"),
-       denoiseOption(),
-       tilesOption(),
-       threadsOption(),
-       verboseOption()});
+      std::move(options));
+}
+
+/** -job R must name one of the -jobs N; checked before anything is loaded. */
+void
+checkJobOptions(const CommandLine& cmd)
+{
+  const unsigned jobs = cmd.count("-jobs"), job = cmd.count("-job");
+  if (jobs == 0 && job != 0)
+    fail("-job needs -jobs");
+  if (jobs > 0 && job >= jobs)
+    fail("-job " + std::to_string(job) + " must be below -jobs " +
+         std::to_string(jobs));
+}
+
+/** The exchange of -jobs N -job R (none for fewer than 2 jobs): its files carry the
+ * input's hash and the options that shape the diagram, so that job 0 refuses tiles
+ * made from anything else. */
+std::shared_ptr<JobFiles>
+jobFiles(const CommandLine& cmd, const pcl::PointCloud<pcl::PointXYZ>& xyz)
+{
+  const unsigned jobs = cmd.count("-jobs"), job = cmd.count("-job");
+  if (jobs < 2)
+    return nullptr;
+  std::uint64_t hash = fingerprintBytes(nullptr, 0);
+  for (const pcl::PointXYZ& p : xyz) {
+    const float coordinates[3] = {p.x, p.y, p.z};
+    hash = fingerprintBytes(coordinates, sizeof coordinates, hash);
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
+  const std::string fingerprint =
+      std::string(hex) + " n " + std::to_string(xyz.size()) + " theta " +
+      formatNumber(cmd.value("-theta"), 17) + " denoise " + cmd.choice("-denoise") +
+      " tiles " + std::to_string(cmd.count("-tiles"));
+  return std::make_shared<JobFiles>(job, jobs, cmd.output(), fingerprint);
 }
 
 /** When the reconstruction found the cloud too sparse for boundary detection, sets
@@ -221,15 +273,25 @@ runReconstructionTool(int argc, char** argv,
 {
   CommandLine cmd = commandLine(exchange != nullptr);
   cmd.parse(argc, argv);
+  if (!exchange)
+    checkJobOptions(cmd);
 
   const pcl::PointCloud<pcl::PointXYZ>::Ptr xyz =
       toXyz(loadCloud(cmd.input(), cmd.verbose()));
+  const std::shared_ptr<JobFiles> job_files = exchange ? nullptr : jobFiles(cmd, *xyz);
+  const std::shared_ptr<pcl::cocone::TileExchange> shared =
+      job_files ? job_files : exchange;
   pcl::Indices far_points;
   std::size_t unused = 0, distinct = 0;
   const std::vector<pcl::Vertices> polygons =
-      reconstruct(xyz, cmd, exchange, far_points, unused, distinct);
-  if (exchange && exchange->rank() != 0)
+      reconstruct(xyz, cmd, shared, far_points, unused, distinct);
+  if (shared && shared->rank() != 0) {
+    if (job_files)
+      pcl::console::print_info("job %u of %u: tiles written to %s\n", job_files->rank(),
+                               job_files->size(),
+                               job_files->fileOf(job_files->rank()).c_str());
     return 0;
+  }
   // The finite points that are not far, in input order, the triangles renumbered: the
   // io library's mesh as written, shared with the Python module's Mesh.save.
   pcl::cocone::MeshForWriting mesh;
@@ -246,6 +308,8 @@ runReconstructionTool(int argc, char** argv,
                              "renumbered\n",
                              mesh.far_dropped);
   saveMesh(cmd.output(), mesh.vertices, mesh.triangles);
+  if (job_files)
+    job_files->removeFiles();
 
   const pcl::cocone::MeshTopology topology =
       pcl::cocone::analyzeTriangleMesh(mesh.triangles);

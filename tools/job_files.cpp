@@ -1,0 +1,117 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// JobFiles (job_files.h). A file is a header line (magic, job, jobs, fingerprint),
+// the message's length, and the message.
+#include "job_files.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <system_error>
+
+namespace pcl {
+namespace cocone {
+namespace tools {
+
+namespace {
+
+const char kMagic[] = "pcl_cocone tiles v1";
+
+std::string
+headerOf(unsigned job, unsigned jobs, const std::string& fingerprint)
+{
+  return std::string(kMagic) + " job " + std::to_string(job) + " of " +
+         std::to_string(jobs) + " " + fingerprint + "\n";
+}
+
+} // namespace
+
+std::uint64_t
+fingerprintBytes(const void* bytes, std::size_t size, std::uint64_t hash)
+{
+  const auto* p = static_cast<const unsigned char*>(bytes);
+  for (std::size_t i = 0; i < size; ++i) {
+    hash ^= p[i];
+    hash *= 0x100000001b3ull;
+  }
+  return hash;
+}
+
+JobFiles::JobFiles(unsigned job, unsigned jobs, std::string output,
+                   std::string fingerprint)
+  : job_(job), jobs_(jobs), output_(std::move(output)),
+    fingerprint_(std::move(fingerprint))
+{}
+
+std::string
+JobFiles::fileOf(unsigned job) const
+{
+  return output_ + ".job-" + std::to_string(job) + "-of-" + std::to_string(jobs_) +
+         ".tiles";
+}
+
+std::vector<std::vector<std::uint8_t>>
+JobFiles::gatherToRoot(const std::vector<std::uint8_t>& message)
+{
+  if (job_ != 0) {
+    const std::string path = fileOf(job_);
+    const std::string temporary = path + ".partial";
+    {
+      std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+      const std::string header = headerOf(job_, jobs_, fingerprint_);
+      const std::uint64_t length = message.size();
+      out.write(header.data(), std::streamsize(header.size()));
+      out.write(reinterpret_cast<const char*>(&length), sizeof length);
+      out.write(reinterpret_cast<const char*>(message.data()),
+                std::streamsize(message.size()));
+      out.close();
+      if (!out)
+        throw std::runtime_error("cannot write " + temporary);
+    }
+    std::error_code error;
+    std::filesystem::rename(temporary, path, error);
+    if (error)
+      throw std::runtime_error("cannot rename " + temporary + " to " + path + ": " +
+                               error.message());
+    return {};
+  }
+  std::vector<std::vector<std::uint8_t>> messages(jobs_);
+  for (unsigned r = 1; r < jobs_; ++r) {
+    const std::string path = fileOf(r);
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+      throw std::runtime_error(path + " is missing: run jobs 1 to " +
+                               std::to_string(jobs_ - 1) + " first");
+    std::string header;
+    std::getline(in, header);
+    if (!in || header + "\n" != headerOf(r, jobs_, fingerprint_))
+      throw std::runtime_error(path + " was made from another input or other options");
+    std::uint64_t length = 0;
+    in.read(reinterpret_cast<char*>(&length), sizeof length);
+    const auto here = in.tellg();
+    in.seekg(0, std::ios::end);
+    const auto end = in.tellg();
+    if (!in || here < 0 || std::uint64_t(end - here) != length)
+      throw std::runtime_error(path + " is truncated");
+    in.seekg(here);
+    messages[r].resize(length);
+    in.read(reinterpret_cast<char*>(messages[r].data()), std::streamsize(length));
+    if (!in)
+      throw std::runtime_error("cannot read " + path);
+  }
+  return messages;
+}
+
+void
+JobFiles::removeFiles() const
+{
+  for (unsigned r = 1; r < jobs_; ++r) {
+    std::error_code ignored;
+    std::filesystem::remove(fileOf(r), ignored);
+  }
+}
+
+} // namespace tools
+} // namespace cocone
+} // namespace pcl
