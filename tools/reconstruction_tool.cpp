@@ -324,13 +324,15 @@ runReconstructionTool(int argc, char** argv,
   // (their first occurrence is the vertex), and those the mesh leaves out: outliers,
   // and samples of parts too thin or too sparse for a manifold through them.
   const std::size_t measured = xyz->size() - mesh.non_finite_dropped - mesh.far_dropped;
-  const std::size_t duplicates = measured - std::min(measured, distinct);
-  const std::size_t dropped = mesh.non_finite_dropped + mesh.far_dropped + duplicates;
+  if (distinct > measured ||
+      unused < mesh.non_finite_dropped + mesh.far_dropped + (measured - distinct))
+    fail("internal error: the unused points do not add up");
+  const std::size_t duplicates = measured - distinct;
   pcl::console::print_info(
       "unused points %zu of %zu: %zu non-finite, %zu far, %zu duplicates, %zu left out "
       "of the mesh (outliers, undersampled parts)\n",
       unused, xyz->size(), mesh.non_finite_dropped, mesh.far_dropped, duplicates,
-      unused - std::min(unused, dropped));
+      unused - mesh.non_finite_dropped - mesh.far_dropped - duplicates);
   return 0;
 }
 

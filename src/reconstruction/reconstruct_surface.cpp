@@ -40,6 +40,7 @@ flagBoundarySamples(const VoronoiCocone& voronoi,
                     ReconstructionReport& report)
 {
   const std::size_t n = voronoi.size();
+  report.distinct_samples = voronoi.numUniqueSamples();
   if (!parameters.detect_boundary) {
     report.boundary_samples.assign(n, 0);
     return;
@@ -60,7 +61,6 @@ flagBoundarySamples(const VoronoiCocone& voronoi,
   for (SampleIndex v = 0; v < n; ++v)
     report.distinct_boundary_samples +=
         report.boundary_samples[v] && voronoi.representative(v) == v;
-  report.distinct_samples = voronoi.numUniqueSamples();
   if (report.tooSparseForBoundaryDetection())
     PCL_WARN("[pcl::cocone::reconstructSurface] %zu of %zu distinct samples are "
              "boundary samples: the cloud is too sparse for boundary detection at rho "
