@@ -185,4 +185,12 @@ TEST_F(MpiDriver, BadInputFailsWithItsReason)
   EXPECT_NE(option.err.find("-tiles"), std::string::npos) << option.err;
 }
 
+TEST_F(MpiDriver, HelpPrintsOnceAndExitsZero)
+{
+  const ToolRun help = distributed(2, {"-h"});
+  EXPECT_EQ(help.exit_code, 0) << help.err;
+  EXPECT_EQ(occurrences(help.out, "Run it under mpirun"), 1u) << help.out;
+  EXPECT_EQ(help.err.find("MPI_ABORT"), std::string::npos) << help.err;
+}
+
 } // namespace

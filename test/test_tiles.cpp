@@ -313,58 +313,118 @@ TEST(Tiles, SharedByProcessesAsOneProcessBuildsIt)
   }
 }
 
-/** An exchange that hands the root \a messages instead of the other processes'. */
+/** An exchange for process \a rank of \a size: a root handed \a messages instead of
+ * the other processes', or another process whose message is kept in #sent. */
 class ForgedExchange : public pcl::cocone::TileExchange
 {
 public:
-  explicit ForgedExchange(std::vector<std::vector<std::uint8_t>> messages)
-    : messages_(std::move(messages))
+  ForgedExchange(unsigned rank, unsigned size,
+                 std::vector<std::vector<std::uint8_t>> messages = {})
+    : rank_(rank), size_(size), messages_(std::move(messages))
   {}
   unsigned
   rank() const override
   {
-    return 0;
+    return rank_;
   }
   unsigned
   size() const override
   {
-    return 2;
+    return size_;
   }
   std::vector<std::vector<std::uint8_t>>
-  gatherToRoot(const std::vector<std::uint8_t>&) override
+  gatherToRoot(const std::vector<std::uint8_t>& message) override
   {
-    return messages_;
+    ++calls;
+    sent = message;
+    return rank_ == 0 ? messages_ : std::vector<std::vector<std::uint8_t>>();
   }
 
+  std::vector<std::uint8_t> sent;
+  int calls = 0;
+
 private:
+  unsigned rank_, size_;
   std::vector<std::vector<std::uint8_t>> messages_;
 };
 
 TEST(Tiles, BadMessagesFromOtherProcessesFailWithAReason)
 {
-  const shapes::SampledShape torus = shapes::sampleRandom(Shape::torus, 5000, 4);
-  const auto compute = [&](std::vector<std::vector<std::uint8_t>> messages,
-                           const std::string& expected) {
-    VoronoiParameters p;
-    p.tiles = 2;
-    p.exchange = std::make_shared<ForgedExchange>(std::move(messages));
-    VoronoiCocone root(p);
-    EXPECT_EQ(root.compute(torus.points), Status::internal_error) << expected;
-    EXPECT_NE(root.errorMessage().find(expected), std::string::npos)
-        << root.errorMessage();
-  };
-  // Says its tile is complete, then ends.
-  compute({{}, {1, 1, 0, 0, 0, 1, 0, 0, 0}}, "truncated");
-  // Names a tile beyond the tiling.
-  compute({{}, {1, 1, 0, 0, 0, 9, 0, 0, 0}}, "names tile 9");
-  // An empty message, and a message missing altogether.
-  compute({{}, {}}, "truncated");
-  compute({{}}, "1 messages for 2 processes");
-  // A process with an invalid rank.
+  const shapes::SampledShape torus = shapes::sampleRandom(Shape::torus, 20000, 4);
+  // The true message of process 1 of 2.
+  auto worker = std::make_shared<ForgedExchange>(1, 2);
   VoronoiParameters p;
-  p.exchange = std::make_shared<ThreadExchange>(
-      3, 2, std::make_shared<ThreadExchange::Mailbox>());
-  VoronoiCocone lost(p);
+  p.tiles = 2;
+  p.exchange = worker;
+  EXPECT_EQ(VoronoiCocone(p).compute(torus.points), Status::not_computed);
+  ASSERT_EQ(worker->calls, 1);
+  const std::vector<std::uint8_t> good = worker->sent;
+  ASSERT_GT(good.size(), 1000u);
+
+  const auto root = [&](unsigned size, std::vector<std::vector<std::uint8_t>> messages,
+                        Status expected_status, const std::string& expected) {
+    VoronoiParameters q;
+    q.tiles = 2;
+    q.exchange = std::make_shared<ForgedExchange>(0, size, std::move(messages));
+    VoronoiCocone diagram(q);
+    EXPECT_EQ(diagram.compute(torus.points), expected_status) << expected;
+    EXPECT_NE(diagram.errorMessage().find(expected), std::string::npos)
+        << diagram.errorMessage();
+    return diagram;
+  };
+  // The true message joins into the diagram of one process.
+  expectSameDiagram(diagram(torus.points, 1, 0), root(2, {{}, good}, Status::ok, ""),
+                    "2 processes");
+  // Truncated, by one byte or to nothing.
+  root(2, {{}, std::vector<std::uint8_t>(good.begin(), good.end() - 1)},
+       Status::internal_error, "truncated");
+  root(2, {{}, {}}, Status::internal_error, "truncated");
+  // Another kind, another fingerprint (the points of another input).
+  std::vector<std::uint8_t> forged = good;
+  forged[0] = 7;
+  root(2, {{}, forged}, Status::internal_error, "unknown kind 7");
+  forged = good;
+  forged[3] ^= 1;
+  root(2, {{}, forged}, Status::internal_error, "was made from other points");
+  // The root's own tile 0 instead of tile 1 (after kind, fingerprint and count).
+  forged = good;
+  std::fill(forged.begin() + 13, forged.begin() + 17, 0);
+  root(2, {{}, forged}, Status::internal_error,
+       "names tile 0 where tile 1 was dealt to process 1");
+  // The same message from process 2 of 3, which was dealt no tile of 2.
+  root(3, {{}, good, good}, Status::internal_error,
+       "holds 1 tiles, not the 0 dealt to process 2");
+  // A message missing altogether, and a process that failed.
+  root(2, {{}}, Status::internal_error, "1 messages for 2 processes");
+  root(2, {{}, {2, 'o', 'o', 'p', 's'}}, Status::internal_error,
+       "process 1 failed: oops");
+
+  // A process that fails before its tiles still calls the exchange once, with its
+  // reason, so that the root does not wait for it.
+  auto failing = std::make_shared<ForgedExchange>(1, 2);
+  VoronoiParameters f;
+  f.tiles = 2;
+  f.exchange = failing;
+  std::vector<Eigen::Vector3d> with_nan = torus.points;
+  with_nan[5].x() = std::nan("");
+  EXPECT_EQ(VoronoiCocone(f).compute(with_nan), Status::non_finite_input);
+  EXPECT_EQ(failing->calls, 1);
+  ASSERT_FALSE(failing->sent.empty());
+  EXPECT_EQ(failing->sent[0], 2);
+  EXPECT_NE(std::string(failing->sent.begin() + 1, failing->sent.end())
+                .find("non-finite coordinate"),
+            std::string::npos);
+  // And a root that fails first still takes the messages.
+  auto failing_root = std::make_shared<ForgedExchange>(
+      0, 2, std::vector<std::vector<std::uint8_t>>{{}, good});
+  f.exchange = failing_root;
+  EXPECT_EQ(VoronoiCocone(f).compute(with_nan), Status::non_finite_input);
+  EXPECT_EQ(failing_root->calls, 1);
+
+  // A process with an invalid rank.
+  VoronoiParameters lost_parameters;
+  lost_parameters.exchange = std::make_shared<ForgedExchange>(3, 2);
+  VoronoiCocone lost(lost_parameters);
   EXPECT_EQ(lost.compute(torus.points), Status::invalid_parameter);
 }
 

@@ -9,12 +9,15 @@
 // process writes.
 #include "reconstruction_tool.h"
 
+#include <fcntl.h>
 #include <mpi.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -90,13 +93,19 @@ private:
 };
 
 bool mpi_finalized = false;
+bool help_requested = false;
 
 /** A process that exits without MPI_Finalize (the tool's fail() exits 1 with its
- * reason) takes the others down with it, so that none waits for its tiles. */
+ * reason) takes the others down with it, so that none waits for its tiles. The help
+ * (-h, which every process prints and exits 0 on) finalizes instead. */
 void
-abortOthers()
+atExit()
 {
-  if (!mpi_finalized)
+  if (mpi_finalized)
+    return;
+  if (help_requested)
+    MPI_Finalize();
+  else
     MPI_Abort(MPI_COMM_WORLD, EXIT_FAILURE);
 }
 
@@ -113,12 +122,20 @@ main(int argc, char** argv)
                          "support MPI_THREAD_SERIALIZED\n");
     MPI_Abort(MPI_COMM_WORLD, EXIT_FAILURE);
   }
-  std::atexit(abortOthers);
+  for (int i = 1; i < argc; ++i)
+    help_requested = help_requested || std::strcmp(argv[i], "-h") == 0 ||
+                     std::strcmp(argv[i], "--help") == 0;
+  std::atexit(atExit);
   const auto exchange = std::make_shared<MpiTileExchange>();
   // Only rank 0 reports; errors still show from every rank.
-  if (exchange->rank() != 0 && !std::freopen("/dev/null", "w", stdout))
-    std::fprintf(stderr, "pcl_cocone_reconstruction_mpi: rank %u keeps its output\n",
-                 exchange->rank());
+  if (exchange->rank() != 0) {
+    std::fflush(stdout);
+    const int null = ::open("/dev/null", O_WRONLY);
+    if (null >= 0) {
+      ::dup2(null, STDOUT_FILENO);
+      ::close(null);
+    }
+  }
   const int code = pcl::cocone::tools::runReconstructionTool(argc, argv, exchange);
   MPI_Finalize();
   mpi_finalized = true;

@@ -6,6 +6,7 @@
 
 #include "common/status_guard.h"
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 #include <type_traits>
@@ -104,12 +105,43 @@ getVector(Reader& in)
 
 } // namespace
 
+std::uint64_t
+diagramFingerprint(const DiagramState& d, const KdTiling& tiling)
+{
+  // FNV-1a over the counts and the coordinates, in the tiling's order.
+  std::uint64_t hash = 0xcbf29ce484222325ull;
+  const auto mix = [&](const void* bytes, std::size_t size) {
+    const auto* p = static_cast<const unsigned char*>(bytes);
+    for (std::size_t i = 0; i < size; ++i) {
+      hash ^= p[i];
+      hash *= 0x100000001b3ull;
+    }
+  };
+  const std::uint64_t counts[3] = {d.centered.size(), d.unique_count,
+                                   tiling.numTiles()};
+  mix(counts, sizeof counts);
+  for (const SampleIndex s : tiling.order())
+    mix(d.centered[s].data(), 3 * sizeof(double));
+  return hash;
+}
+
+namespace {
+enum MessageKind : std::uint8_t
+{
+  kOutgrown = 0,
+  kComplete = 1,
+  kFailed = 2
+};
+} // namespace
+
 std::vector<std::uint8_t>
 packTiles(const KdTiling& tiling, const std::vector<unsigned>& tiles, bool complete,
-          const DiagramState& d, std::vector<TileContribution>& contributions)
+          std::uint64_t fingerprint, const DiagramState& d,
+          std::vector<TileContribution>& contributions)
 {
   Writer out;
-  out.put(std::uint8_t(complete ? 1 : 0));
+  out.put(std::uint8_t(complete ? kComplete : kOutgrown));
+  out.put(fingerprint);
   if (!complete)
     return std::move(out.buffer);
   out.put(std::uint32_t(tiles.size()));
@@ -140,25 +172,57 @@ packTiles(const KdTiling& tiling, const std::vector<unsigned>& tiles, bool compl
   return std::move(out.buffer);
 }
 
+std::vector<std::uint8_t>
+packFailure(const std::string& reason)
+{
+  std::vector<std::uint8_t> message(1 + reason.size());
+  message[0] = kFailed;
+  std::copy(reason.begin(), reason.end(), message.begin() + 1);
+  return message;
+}
+
 bool
-unpackTiles(const std::vector<std::uint8_t>& message, const KdTiling& tiling,
+unpackTiles(const std::vector<std::uint8_t>& message, unsigned sender,
+            unsigned processes, const KdTiling& tiling, std::uint64_t fingerprint,
             DiagramState& d, std::vector<TileContribution>& contributions)
 {
   Reader in(message);
-  if (in.get<std::uint8_t>() == 0)
+  const std::uint8_t kind = in.get<std::uint8_t>();
+  if (kind == kFailed)
+    throw StageFailure{Status::internal_error,
+                       "process " + std::to_string(sender) + " failed: " +
+                           std::string(message.begin() + 1, message.end())};
+  if (kind != kComplete && kind != kOutgrown)
+    malformed("is of unknown kind " + std::to_string(kind));
+  if (in.get<std::uint64_t>() != fingerprint)
+    malformed("was made from other points or another tiling (same input, options "
+              "and build on every process?)");
+  if (kind == kOutgrown) {
+    if (!in.atEnd())
+      malformed("has bytes beyond its end");
     return false;
+  }
   const std::size_t n = d.pole_vector.size();
   const auto check_sample = [&](SampleIndex s, bool may_be_infinite) {
     if (s < n || (may_be_infinite && s == kNoSample))
       return s;
     malformed("names sample " + std::to_string(s) + " of " + std::to_string(n));
   };
+  // Exactly the tiles dealt to the sender, in ascending order.
+  std::vector<unsigned> dealt;
+  for (unsigned t = sender; t < tiling.numTiles(); t += processes)
+    dealt.push_back(t);
   const std::uint32_t count = in.get<std::uint32_t>();
+  if (count != dealt.size())
+    malformed("holds " + std::to_string(count) + " tiles, not the " +
+              std::to_string(dealt.size()) + " dealt to process " +
+              std::to_string(sender));
   for (std::uint32_t k = 0; k < count; ++k) {
     const std::uint32_t t = in.get<std::uint32_t>();
-    if (t >= tiling.numTiles())
-      malformed("names tile " + std::to_string(t) + " of " +
-                std::to_string(tiling.numTiles()));
+    if (t != dealt[k])
+      malformed("names tile " + std::to_string(t) + " where tile " +
+                std::to_string(dealt[k]) + " was dealt to process " +
+                std::to_string(sender));
     forEachSample(tiling, t, [&](SampleIndex s) {
       d.pole_vector[s] = getVector(in);
       d.positive_pole[s] = getVector(in);

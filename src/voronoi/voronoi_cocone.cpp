@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <exception>
 #include <cmath>
 #include <numeric>
 #include <sstream>
@@ -352,6 +353,27 @@ VoronoiCocone::delaunayTrianglesAmong(
 
 namespace {
 
+/** The one-line reason of a failure caught in the tile phase, for the root. */
+std::string
+reasonOf(const std::exception_ptr& failure)
+{
+  try {
+    std::rethrow_exception(failure);
+  }
+  catch (const StageFailure& stage) {
+    return stage.message;
+  }
+  catch (const std::bad_alloc&) {
+    return "out of memory building its tiles";
+  }
+  catch (const std::exception& e) {
+    return e.what();
+  }
+  catch (...) {
+    return "unknown exception building its tiles";
+  }
+}
+
 /** compute() without its outer guard: each stage that allocates much runs in a guard of
  * its own, whose message names it. */
 Status
@@ -363,7 +385,24 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
   const StageProgress progress(callback, 0, 1);
   const StageProgress triangulation = progress.part(0, 0.75);
   d = DiagramState();
+  // Several processes (core/tile_exchange.h): this one builds the tiles dealt to it,
+  // and calls the exchange exactly once, whatever happens: a process that fails
+  // before its tiles are sent sends its reason instead, and a root that fails first
+  // still takes every message, so that no process waits for another forever.
+  TileExchange* const exchange = parameters.exchange.get();
+  const unsigned rank = exchange ? exchange->rank() : 0;
+  const unsigned ranks = exchange ? exchange->size() : 1;
+  bool exchanged = !exchange || ranks < 2 || rank >= ranks;
   const auto fail = [&](Status status, const std::string& message) {
+    if (!exchanged) {
+      exchanged = true;
+      try {
+        exchange->gatherToRoot(rank == 0 ? std::vector<std::uint8_t>()
+                                         : packFailure(message));
+      }
+      catch (...) { // the failure reported here says more than the exchange's
+      }
+    }
     DiagramState fresh;
     fresh.status = status;
     fresh.message = message;
@@ -375,10 +414,6 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
     return fail(Status::invalid_parameter,
                 "the cocone angle " + std::to_string(parameters.cocone_angle) +
                     " is outside " + kCoconeAngleRange.text());
-  // Several processes (core/tile_exchange.h): this one builds the tiles dealt to it.
-  TileExchange* const exchange = parameters.exchange.get();
-  const unsigned rank = exchange ? exchange->rank() : 0;
-  const unsigned ranks = exchange ? exchange->size() : 1;
   if (ranks == 0 || rank >= ranks)
     return fail(Status::invalid_parameter, "the tile exchange names process " +
                                                std::to_string(rank) + " of " +
@@ -572,34 +607,59 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
         }
       }
     };
-    tbb::parallel_for(std::size_t(0), mine.size(), std::size_t(1), [&](std::size_t k) {
-      const unsigned t = mine[k];
-      if (outgrown)
-        return;
-      Clock::time_point tile_start = Clock::now();
-      const Eigen::AlignedBox3d& box = tiling.box();
-      DelaunayLocks locks(CGAL::Bbox_3(box.min().x(), box.min().y(), box.min().z(),
-                                       box.max().x(), box.max().y(), box.max().z()),
-                          kLockGrid);
-      // One thread: no locks, CGAL's sequential insertion.
-      Delaunay dt(Kernel(), parameters.threads == 1 ? nullptr : &locks);
-      stats[t] = triangulateTile(tiling, t, d.centered, tile_of, kHaloBudget, dt,
-                                 on_inserted, [&] { return outgrown.load(); });
-      if (!stats[t].complete) {
-        outgrown = true;
-        return;
-      }
-      dt_time[t] = seconds_since(tile_start);
-      tile_start = Clock::now();
-      computeTileGeometry(dt, d.centered, tile_of, t, sin_theta, d, contributions[t]);
-      geometry_time[t] = seconds_since(tile_start);
-    });
+    // A failure here (cancelled, out of memory) is kept until the tiles are exchanged.
+    std::exception_ptr failure;
+    try {
+      tbb::parallel_for(
+          std::size_t(0), mine.size(), std::size_t(1), [&](std::size_t k) {
+            const unsigned t = mine[k];
+            if (outgrown)
+              return;
+            Clock::time_point tile_start = Clock::now();
+            const Eigen::AlignedBox3d& box = tiling.box();
+            DelaunayLocks locks(CGAL::Bbox_3(box.min().x(), box.min().y(),
+                                             box.min().z(), box.max().x(),
+                                             box.max().y(), box.max().z()),
+                                kLockGrid);
+            // One thread: no locks, CGAL's sequential insertion.
+            Delaunay dt(Kernel(), parameters.threads == 1 ? nullptr : &locks);
+            stats[t] = triangulateTile(tiling, t, d.centered, tile_of, kHaloBudget, dt,
+                                       on_inserted, [&] { return outgrown.load(); });
+            if (!stats[t].complete) {
+              outgrown = true;
+              return;
+            }
+            dt_time[t] = seconds_since(tile_start);
+            tile_start = Clock::now();
+            computeTileGeometry(dt, d.centered, tile_of, t, sin_theta, d,
+                                contributions[t]);
+            geometry_time[t] = seconds_since(tile_start);
+          });
+    }
+    catch (...) {
+      failure = std::current_exception();
+    }
     bool complete = !outgrown;
-    if (distributed && ranks > 1) {
-      // Every process sends, even one whose tiles gave up, so that none waits.
-      const std::vector<std::vector<std::uint8_t>> messages = exchange->gatherToRoot(
-          rank == 0 ? std::vector<std::uint8_t>()
-                    : packTiles(tiling, mine, complete, d, contributions));
+    if (distributed && !exchanged) {
+      // Every process sends, even one whose tiles gave up or failed, so that none
+      // waits.
+      const std::uint64_t fingerprint = diagramFingerprint(d, tiling);
+      std::vector<std::uint8_t> mine_message;
+      if (rank != 0) {
+        try {
+          mine_message = failure ? packFailure(reasonOf(failure))
+                                 : packTiles(tiling, mine, complete, fingerprint, d,
+                                             contributions);
+        }
+        catch (...) {
+          mine_message = packFailure("out of memory packing its tiles");
+        }
+      }
+      exchanged = true;
+      std::vector<std::vector<std::uint8_t>> messages =
+          exchange->gatherToRoot(mine_message);
+      if (failure)
+        std::rethrow_exception(failure);
       if (rank != 0)
         return Outcome::handed_off;
       if (messages.size() != ranks)
@@ -607,10 +667,14 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
                            "the tile exchange returned " +
                                std::to_string(messages.size()) + " messages for " +
                                std::to_string(ranks) + " processes"};
-      for (unsigned r = 1; r < ranks; ++r)
-        if (!unpackTiles(messages[r], tiling, d, contributions))
+      for (unsigned r = 1; r < ranks; ++r) {
+        if (!unpackTiles(messages[r], r, ranks, tiling, fingerprint, d, contributions))
           complete = false;
+        std::vector<std::uint8_t>().swap(messages[r]); // its copy is in d now
+      }
     }
+    if (failure)
+      std::rethrow_exception(failure);
     if (!complete)
       return Outcome::outgrown;
     for (unsigned t = 0; t < count; ++t) {

@@ -235,9 +235,12 @@ public:
   /** \brief Build the Voronoi diagram together with other processes (see
    * core/tile_exchange.h; pcl_cocone_reconstruction_mpi sets an MPI one). Every process
    * calls reconstruct() on the same cloud with the same parameters; the tiles
-   * (setNumberOfTiles) are dealt out among them. On the root (rank 0) reconstruct()
-   * gives the mesh a single process gives; on the others it gives no polygon and no
-   * error (getErrorMessage() is empty unless something failed there).
+   * (setNumberOfTiles) are dealt out among them, so set as many tiles as processes at
+   * least (the automatic count is one tile, which the root alone builds). On the root
+   * (rank 0) reconstruct() gives the mesh a single process gives; on the others it
+   * gives no polygon and no error (getErrorMessage() is empty unless something failed
+   * there; a failure on another process fails the root's reconstruct() with its
+   * reason).
    * \param[in] exchange the transport (pcl/cocone/core/tile_exchange.h); empty
    *            (default): this process alone */
   void

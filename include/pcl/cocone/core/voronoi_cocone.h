@@ -193,9 +193,14 @@ public:
    *            65536 insertions and at the end; returning false cancels
    *            (Status::internal_error, errorMessage() "cancelled")
    * \return Status::ok, or the reason nothing was built (see errorMessage()):
-   *         Status::invalid_parameter (the cocone angle), Status::too_many_points,
+   *         Status::invalid_parameter (the cocone angle, or a tile exchange whose rank
+   *         is not below its size), Status::too_many_points,
    *         Status::non_finite_input, Status::too_few_points,
-   *         Status::degenerate_dimension or Status::internal_error */
+   *         Status::degenerate_dimension or Status::internal_error (also when
+   *         another process of a tile exchange failed, with its reason). With a tile
+   *         exchange (VoronoiParameters::exchange), a process other than the root
+   *         returns Status::not_computed once it has sent its tiles; timings() of the
+   *         root then count only the tiles it built itself. */
   Status compute(const std::vector<Eigen::Vector3d>& points,
                  const ProgressCallback& progress = nullptr);
 
