@@ -74,18 +74,6 @@ malformed(const std::string& what)
                      "a tile message from another process " + what};
 }
 
-/** Calls \a visit(sample) for the samples of tile \a t, in the tiling's order. */
-template <typename Visit>
-void
-forEachSample(const KdTiling& tiling, unsigned t, const Visit& visit)
-{
-  for (std::uint32_t l = tiling.firstLeaf(t); l < tiling.firstLeaf(t + 1); ++l) {
-    const KdTiling::Node& leaf = tiling.leaf(l);
-    for (std::uint32_t i = leaf.first; i < leaf.last; ++i)
-      visit(tiling.order()[i]);
-  }
-}
-
 void
 putVector(Writer& out, const Eigen::Vector3d& v)
 {
@@ -147,7 +135,7 @@ packTiles(const KdTiling& tiling, const std::vector<unsigned>& tiles, bool compl
   out.put(std::uint32_t(tiles.size()));
   for (const unsigned t : tiles) {
     out.put(std::uint32_t(t));
-    forEachSample(tiling, t, [&](SampleIndex s) {
+    tiling.forEachSampleOfTile(t, [&](SampleIndex s) {
       putVector(out, d.pole_vector[s]);
       putVector(out, d.positive_pole[s]);
       putVector(out, d.negative_pole[s]);
@@ -223,7 +211,7 @@ unpackTiles(const std::vector<std::uint8_t>& message, unsigned sender,
       malformed("names tile " + std::to_string(t) + " where tile " +
                 std::to_string(dealt[k]) + " was dealt to process " +
                 std::to_string(sender));
-    forEachSample(tiling, t, [&](SampleIndex s) {
+    tiling.forEachSampleOfTile(t, [&](SampleIndex s) {
       d.pole_vector[s] = getVector(in);
       d.positive_pole[s] = getVector(in);
       d.negative_pole[s] = getVector(in);

@@ -80,6 +80,16 @@ public:
     return tile_box_[t];
   }
 
+  /** Calls \a visit(sample) for the samples of tile \a t, in the tiling's order. */
+  template <typename Visit>
+  void
+  forEachSampleOfTile(unsigned t, const Visit& visit) const
+  {
+    for (std::uint32_t l = firstLeaf(t); l < firstLeaf(t + 1); ++l)
+      for (std::uint32_t i = leaf(l).first; i < leaf(l).last; ++i)
+        visit(order_[i]);
+  }
+
   /** Calls \a visit(leaf number) for every leaf whose box \a meets (a predicate on
    * boxes that must hold for a node whenever it holds for a box inside it). */
   template <typename Meets, typename Visit>

@@ -580,11 +580,7 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
     const unsigned count = tiling.numTiles();
     std::vector<std::uint32_t> tile_of(n, 0);
     for (unsigned t = 0; t < count; ++t)
-      for (std::uint32_t l = tiling.firstLeaf(t); l < tiling.firstLeaf(t + 1); ++l) {
-        const KdTiling::Node& leaf = tiling.leaf(l);
-        for (std::uint32_t i = leaf.first; i < leaf.last; ++i)
-          tile_of[tiling.order()[i]] = t;
-      }
+      tiling.forEachSampleOfTile(t, [&](SampleIndex s) { tile_of[s] = t; });
     contributions.assign(count, TileContribution());
     std::vector<unsigned> mine;
     for (unsigned t = 0; t < count; ++t)
