@@ -732,8 +732,10 @@ TEST_F(Tools, ReconstructionAsIndependentJobsWritesTheSameMesh)
     args.insert(args.end(), extra.begin(), extra.end());
     return run(kReconstruction, args);
   };
-  // Job 0 first: the other jobs' tiles are missing.
-  expectOneLineFailure(job(0), "torus_jobs.ply.job-1-of-3.tiles is missing");
+  // Job 0 first: the other jobs' tiles are missing, which it says before it computes.
+  const ToolRun early = job(0);
+  expectOneLineFailure(early, "torus_jobs.ply.job-1-of-3.tiles is missing");
+  EXPECT_EQ(early.out.find("Computing"), std::string::npos) << early.out;
   // Job 1 with another cocone angle: job 0 refuses its tiles.
   expectSuccess(job(1, {"-theta", "0.3"}));
   expectSuccess(job(2));

@@ -4,6 +4,8 @@
 // the message's length, and the message.
 #include "job_files.h"
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -16,13 +18,37 @@ namespace tools {
 
 namespace {
 
-const char kMagic[] = "pcl_cocone tiles v1";
+// The tiles travel in the library's in-memory layout: the version is part of the
+// header, so that files of another release are refused rather than misread.
+const char kMagic[] = "pcl_cocone " PCL_COCONE_VERSION " tiles";
 
 std::string
 headerOf(unsigned job, unsigned jobs, const std::string& fingerprint)
 {
   return std::string(kMagic) + " job " + std::to_string(job) + " of " +
          std::to_string(jobs) + " " + fingerprint + "\n";
+}
+
+/** Opens the file of job \a job at \a path and checks its header; throws with the
+ * reason it cannot be used. */
+std::ifstream
+openChecked(const std::string& path, unsigned job, unsigned jobs,
+            const std::string& fingerprint)
+{
+  std::error_code error;
+  if (!std::filesystem::exists(path, error))
+    throw std::runtime_error(path + " is missing: run jobs 1 to " +
+                             std::to_string(jobs - 1) + " first");
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw std::runtime_error("cannot read " + path);
+  std::string header;
+  std::getline(in, header);
+  if (!in || header.compare(0, sizeof kMagic - 1, kMagic) != 0)
+    throw std::runtime_error(path + " is no tile file of this version of pcl_cocone");
+  if (header + "\n" != headerOf(job, jobs, fingerprint))
+    throw std::runtime_error(path + " was made from another input or other options");
+  return in;
 }
 
 } // namespace
@@ -56,7 +82,15 @@ JobFiles::gatherToRoot(const std::vector<std::uint8_t>& message)
 {
   if (job_ != 0) {
     const std::string path = fileOf(job_);
-    const std::string temporary = path + ".partial";
+    // A name of its own, so that two copies of one job (a requeued array task) do not
+    // write into one file; the rename is atomic, so job 0 sees a whole file or none.
+    const std::string temporary =
+        path + ".partial-" + std::to_string(static_cast<long>(::getpid()));
+    const auto give_up = [&](const std::string& reason) {
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
+      throw std::runtime_error(reason);
+    };
     {
       std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
       const std::string header = headerOf(job_, jobs_, fingerprint_);
@@ -67,26 +101,18 @@ JobFiles::gatherToRoot(const std::vector<std::uint8_t>& message)
                 std::streamsize(message.size()));
       out.close();
       if (!out)
-        throw std::runtime_error("cannot write " + temporary);
+        give_up("cannot write " + temporary);
     }
     std::error_code error;
     std::filesystem::rename(temporary, path, error);
     if (error)
-      throw std::runtime_error("cannot rename " + temporary + " to " + path + ": " +
-                               error.message());
+      give_up("cannot rename " + temporary + " to " + path + ": " + error.message());
     return {};
   }
   std::vector<std::vector<std::uint8_t>> messages(jobs_);
   for (unsigned r = 1; r < jobs_; ++r) {
     const std::string path = fileOf(r);
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-      throw std::runtime_error(path + " is missing: run jobs 1 to " +
-                               std::to_string(jobs_ - 1) + " first");
-    std::string header;
-    std::getline(in, header);
-    if (!in || header + "\n" != headerOf(r, jobs_, fingerprint_))
-      throw std::runtime_error(path + " was made from another input or other options");
+    std::ifstream in = openChecked(path, r, jobs_, fingerprint_);
     std::uint64_t length = 0;
     in.read(reinterpret_cast<char*>(&length), sizeof length);
     const auto here = in.tellg();
@@ -101,6 +127,13 @@ JobFiles::gatherToRoot(const std::vector<std::uint8_t>& message)
       throw std::runtime_error("cannot read " + path);
   }
   return messages;
+}
+
+void
+JobFiles::checkOthersReady() const
+{
+  for (unsigned r = 1; r < jobs_; ++r)
+    openChecked(fileOf(r), r, jobs_, fingerprint_);
 }
 
 void

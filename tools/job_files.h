@@ -41,6 +41,11 @@ public:
   std::vector<std::vector<std::uint8_t>>
   gatherToRoot(const std::vector<std::uint8_t>& message) override;
 
+  /** Job 0, before its own tiles: throws std::runtime_error naming the first other
+   * job's file that is missing or was made from another input, options or version,
+   * so that a missing job is found before hours of work rather than after. */
+  void checkOthersReady() const;
+
   /** Job 0, once the mesh is written: removes the other jobs' files. */
   void removeFiles() const;
 

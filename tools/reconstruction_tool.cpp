@@ -20,6 +20,7 @@
 #include <array>
 #include <cstdint>
 #include <cstdio>
+#include <exception>
 #include <memory>
 #include <string>
 #include <vector>
@@ -281,6 +282,14 @@ runReconstructionTool(int argc, char** argv,
   const std::shared_ptr<JobFiles> job_files = exchange ? nullptr : jobFiles(cmd, *xyz);
   const std::shared_ptr<pcl::cocone::TileExchange> shared =
       job_files ? job_files : exchange;
+  if (job_files && job_files->rank() == 0) {
+    try {
+      job_files->checkOthersReady();
+    }
+    catch (const std::exception& e) {
+      fail(e.what());
+    }
+  }
   pcl::Indices far_points;
   std::size_t unused = 0, distinct = 0;
   const std::vector<pcl::Vertices> polygons =
