@@ -8,13 +8,13 @@
 #include <pcl/point_types.h>
 
 #include "support/process.h"
+#include "support/scratch_folder.h"
 #include "support/shapes.h"
 
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -37,10 +37,7 @@ protected:
   static void
   SetUpTestSuite()
   {
-    dir_ = fs::path(::testing::TempDir()) /
-           ("pcl_cocone_mpi_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    folder_ = std::make_unique<pcl::cocone::test::ScratchFolder>("pcl_cocone_mpi_");
     write("torus.pcd", shapes::sampleRandom(Shape::torus, 20000, 4).points);
     write("cylinder.pcd", shapes::sampleRandom(Shape::open_cylinder, 20000, 3).points);
   }
@@ -48,14 +45,13 @@ protected:
   static void
   TearDownTestSuite()
   {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
+    folder_.reset();
   }
 
   static fs::path
   path(const std::string& name)
   {
-    return dir_ / name;
+    return folder_->path() / name;
   }
 
   static void
@@ -105,10 +101,10 @@ protected:
     return bytes;
   }
 
-  static fs::path dir_;
+  static std::unique_ptr<pcl::cocone::test::ScratchFolder> folder_;
 };
 
-fs::path MpiDriver::dir_;
+std::unique_ptr<pcl::cocone::test::ScratchFolder> MpiDriver::folder_;
 
 std::size_t
 occurrences(const std::string& text, const std::string& what)
