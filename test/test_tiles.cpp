@@ -211,9 +211,29 @@ TEST(Tiles, MoreTilesThanSamples)
   expectSameDiagram(whole, tiled, "6 points");
 }
 
+/** The rank and size every test exchange below reports. */
+class FixedRankExchange : public pcl::cocone::TileExchange
+{
+public:
+  FixedRankExchange(unsigned rank, unsigned size) : rank_(rank), size_(size) {}
+  unsigned
+  rank() const override
+  {
+    return rank_;
+  }
+  unsigned
+  size() const override
+  {
+    return size_;
+  }
+
+protected:
+  unsigned rank_, size_;
+};
+
 /** A TileExchange between threads of this process, standing for the processes of an
  * MPI run: each thread holds one with its rank, all share one mailbox. */
-class ThreadExchange : public pcl::cocone::TileExchange
+class ThreadExchange : public FixedRankExchange
 {
 public:
   struct Mailbox
@@ -225,19 +245,9 @@ public:
   };
 
   ThreadExchange(unsigned rank, unsigned size, std::shared_ptr<Mailbox> mailbox)
-    : rank_(rank), size_(size), mailbox_(std::move(mailbox))
+    : FixedRankExchange(rank, size), mailbox_(std::move(mailbox))
   {}
 
-  unsigned
-  rank() const override
-  {
-    return rank_;
-  }
-  unsigned
-  size() const override
-  {
-    return size_;
-  }
   std::vector<std::vector<std::uint8_t>>
   gatherToRoot(const std::vector<std::uint8_t>& message) override
   {
@@ -253,7 +263,6 @@ public:
   }
 
 private:
-  unsigned rank_, size_;
   std::shared_ptr<Mailbox> mailbox_;
 };
 
@@ -315,23 +324,13 @@ TEST(Tiles, SharedByProcessesAsOneProcessBuildsIt)
 
 /** An exchange for process \a rank of \a size: a root handed \a messages instead of
  * the other processes', or another process whose message is kept in #sent. */
-class ForgedExchange : public pcl::cocone::TileExchange
+class ForgedExchange : public FixedRankExchange
 {
 public:
   ForgedExchange(unsigned rank, unsigned size,
                  std::vector<std::vector<std::uint8_t>> messages = {})
-    : rank_(rank), size_(size), messages_(std::move(messages))
+    : FixedRankExchange(rank, size), messages_(std::move(messages))
   {}
-  unsigned
-  rank() const override
-  {
-    return rank_;
-  }
-  unsigned
-  size() const override
-  {
-    return size_;
-  }
   std::vector<std::vector<std::uint8_t>>
   gatherToRoot(const std::vector<std::uint8_t>& message) override
   {
@@ -344,7 +343,6 @@ public:
   int calls = 0;
 
 private:
-  unsigned rank_, size_;
   std::vector<std::vector<std::uint8_t>> messages_;
 };
 
