@@ -221,6 +221,41 @@ generatedName(const std::string& shape, std::size_t n)
   return shape + "-" + std::to_string(n);
 }
 
+std::string
+randomName(test::Shape shape, std::size_t n)
+{
+  std::string name = test::shapeName(shape);
+  std::replace(name.begin(), name.end(), '_', '-');
+  return generatedName("random-" + name, n);
+}
+
+std::vector<std::size_t>
+randomSizes(bool quick)
+{
+  if (quick)
+    return {100000};
+  return {100000, 1000000, 4000000};
+}
+
+Input
+randomInput(test::Shape shape, std::size_t n, std::size_t probes)
+{
+  auto sampled = std::make_shared<test::SampledShape>(test::sampleRandom(shape, n, 1));
+  Input input;
+  input.name = randomName(shape, n);
+  input.source = "area-uniform random (test/support sampleRandom, seed 1), normal "
+                 "jitter up to 1e-5 x diagonal";
+  input.kind = "random";
+  for (const Eigen::Vector3d& p : sampled->points)
+    input.points.push_back(roundedToFloat(p));
+  input.closed = sampled->closed ? 1 : 0;
+  input.genus = sampled->genus;
+  input.boundary_loops = sampled->boundary_loops;
+  input.reference_probes = test::sampleRandom(shape, probes, 7).points;
+  input.shape = std::move(sampled);
+  return input;
+}
+
 bool
 loadFileInput(const std::string& directory, const FileSpec& spec, Input& input,
               std::string& why)
@@ -411,9 +446,8 @@ finishInput(Input& input, std::size_t probes)
     }
     input.spacing = counted ? sum / static_cast<double>(counted) : 0;
   }
-  // Points over the reference surface.
-  input.reference_probes.clear();
-  if (input.shape) {
+  // Points over the reference surface, unless the input brought its own.
+  if (input.reference_probes.empty() && input.shape) {
     if (input.shape->name == "torus" && input.points.size() > 200000)
       input.reference_probes = randomTorusPoints(probes, 7);
     else {
@@ -426,7 +460,7 @@ finishInput(Input& input, std::size_t probes)
         input.reference_probes = test::sampleTrefoilKnot(probes, 7).points;
     }
   }
-  else if (!input.mesh_triangles.empty())
+  else if (input.reference_probes.empty() && !input.mesh_triangles.empty())
     input.reference_probes =
         spreadOverMesh(input.mesh_vertices, input.mesh_triangles, probes);
 }

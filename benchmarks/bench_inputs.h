@@ -69,7 +69,8 @@ struct Input
   /** Mesh reference (mesh files): vertices and triangles. */
   std::vector<Eigen::Vector3d> mesh_vertices;
   std::vector<TriangleIndices> mesh_triangles;
-  /** Points spread evenly over the reference surface (empty without reference). */
+  /** Points spread evenly over the reference surface (empty without reference; set
+   * before finishInput, it is kept). */
   std::vector<Eigen::Vector3d> reference_probes;
 
   /** What the reference surface is, where known: closed (1), open (0), unknown (-1). */
@@ -143,6 +144,19 @@ std::vector<std::size_t> generatedSizes(bool quick);
 
 /** \brief The name of a generated input: "sphere-10k", "sphere-1M". */
 std::string generatedName(const std::string& shape, std::size_t n);
+
+/** \brief An analytic shape sampled as a scanner does rather than as blue noise
+ * (test::sampleRandom, seed 1): \a n area-uniform random points, with their close
+ * pairs and wide gaps. Named by randomName; its reference probes are another random
+ * sample of the same surface (seed 7, \a probes points). */
+Input randomInput(test::Shape shape, std::size_t n, std::size_t probes);
+
+/** \brief The name of a random input: "random-open-cylinder-1M". */
+std::string randomName(test::Shape shape, std::size_t n);
+
+/** \brief The sizes the shapes are randomly sampled at: 100k points, and 1M and 4M
+ * unless \a quick. */
+std::vector<std::size_t> randomSizes(bool quick);
 
 /** \brief Computes the derived fields of an input whose points are set: cloud, unique
  * count, spacing, diagonal, reference probes (about \a probes points). */

@@ -117,6 +117,20 @@ Context::largeTorus()
   return *(inputs_[key] = std::move(input));
 }
 
+const Input&
+Context::randomSampled(test::Shape shape, std::size_t n)
+{
+  const std::string key = "random:" + randomName(shape, n);
+  auto it = inputs_.find(key);
+  if (it != inputs_.end())
+    return *it->second;
+  progress("sampling " + randomName(shape, n) + " (area-uniform random)");
+  const std::size_t probes = std::min<std::size_t>(n, 100000);
+  auto input = std::make_unique<Input>(randomInput(shape, n, probes));
+  finishInput(*input, probes);
+  return *(inputs_[key] = std::move(input));
+}
+
 } // namespace bench
 } // namespace cocone
 } // namespace pcl
@@ -142,7 +156,8 @@ usage(std::ostream& out)
 {
   out << "usage: pcl_cocone_benchmark [--quick] [--data DIR] [--markdown OUT.md]\n"
          "                            [--only reconstruction|boundary|decimation]\n"
-         "                            [--filter NAME] [--timeout SECONDS] [--large N]\n                            [--ours-only]\n"
+         "                            [--filter NAME] [--timeout SECONDS] [--large N]\n"
+         "                            [--ours-only] [--random N,N|none]\n"
          "  --quick     no 1M-point inputs, no peers on inputs of 100k points and more\n"
          "  --data      folder with the data files (default "
       << PCL_COCONE_BENCH_DATA_DIR
@@ -152,7 +167,9 @@ usage(std::ostream& out)
          "  --filter    only inputs whose name contains NAME\n"
          "  --timeout   seconds allowed to one isolated run (default 900)\n"
          "  --large     points of the large jittered torus (default 1000000)\n"
-         "  --ours-only run no peer (e.g. to profile ours)\n";
+         "  --ours-only run no peer (e.g. to profile ours)\n"
+         "  --random    sizes of the area-uniform random samples of the shapes (default\n"
+         "              100000,1000000,4000000; with --quick 100000); none for none\n";
 }
 
 std::string
@@ -203,6 +220,7 @@ main(int argc, char** argv)
 {
   Options options;
   options.data_directory = PCL_COCONE_BENCH_DATA_DIR;
+  bool random_sizes_given = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const auto value = [&]() -> std::string {
@@ -240,6 +258,23 @@ main(int argc, char** argv)
       options.no_peers = true;
     else if (arg == "--large")
       options.large = static_cast<std::size_t>(number(1000, 1e8));
+    else if (arg == "--random") {
+      random_sizes_given = true;
+      const std::string text = value();
+      std::stringstream list(text);
+      std::string item;
+      while (text != "none" && std::getline(list, item, ',')) {
+        char* end = nullptr;
+        const double parsed = std::strtod(item.c_str(), &end);
+        if (item.empty() || *end != '\0' || !(parsed >= 1000 && parsed <= 1e8)) {
+          std::cerr << "pcl_cocone_benchmark: --random takes sizes from 1000 to 1e8 "
+                       "separated by commas, or none, not '"
+                    << text << "'\n";
+          return 1;
+        }
+        options.random_sizes.push_back(static_cast<std::size_t>(parsed));
+      }
+    }
     else if (arg == "--help" || arg == "-h") {
       usage(std::cout);
       return 0;
@@ -250,6 +285,8 @@ main(int argc, char** argv)
       return 1;
     }
   }
+  if (!random_sizes_given)
+    options.random_sizes = randomSizes(options.quick);
   const std::vector<std::string> sections = {"reconstruction", "boundary",
                                              "decimation"};
   if (!options.only.empty() &&

@@ -199,6 +199,14 @@ runBoundarySection(Context& context)
         inputs.push_back(&context.generated(shape, n));
   if (!quick && context.selected("torus-1M"))
     inputs.push_back(&context.largeTorus());
+  // The open shapes sampled as a scanner does, up to 100k points (the flags' promise
+  // is the same on them).
+  for (const std::size_t n : context.options.random_sizes)
+    for (const test::Shape shape :
+         {test::Shape::hemisphere, test::Shape::monkey_saddle,
+          test::Shape::open_cylinder, test::Shape::half_cylinder})
+      if (n <= 100000 && context.selected(randomName(shape, n)))
+        inputs.push_back(&context.randomSampled(shape, n));
 
   const double timeout = context.options.timeout;
   for (const Input* input : inputs) {

@@ -42,6 +42,8 @@ using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, Tds>;
 constexpr std::size_t kQuickPeerLimit = 100000;
 /** Generated shapes this large are not sampled as a torus: largeTorus() is that one. */
 constexpr std::size_t kLargeSize = 1000000;
+/** The largest random-sampled input the peers run on. */
+constexpr std::size_t kRandomPeerLimit = 100000;
 
 std::vector<TriangleIndices>
 toTriangles(const std::vector<pcl::Vertices>& polygons)
@@ -304,8 +306,12 @@ runInput(Context& context, const Input& input)
       {[&](int, Measurement& m) { runDelaunay(input, m); }, kNoBudget},
       {[&](int, Measurement& m) { runCore(input, m); }, kNoBudget},
       {[&](int r, Measurement& m) { runCocone(input, r == 0, m); }, kNoBudget}};
-  run.peers =
-      !(context.options.quick && n >= kQuickPeerLimit) && !context.options.no_peers;
+  // The random samples are there for our topology at the sizes users have; the peers
+  // meet them up to kRandomPeerLimit, where their topology is compared too (beyond it,
+  // 18 more runs of each peer at 1M and 4M would double the benchmark's time).
+  run.peers = !(context.options.quick && n >= kQuickPeerLimit) &&
+              !(input.kind == "random" && n > kRandomPeerLimit) &&
+              !context.options.no_peers;
   if (run.peers) {
     contestants.push_back(
         {[&](int r, Measurement& m) { runGreedyProjection(input, r == 0, m); },
@@ -361,6 +367,10 @@ runReconstructionSection(Context& context)
     }
   if (!context.options.quick && context.selected("torus-1M"))
     inputs.push_back(&context.largeTorus());
+  for (const std::size_t n : context.options.random_sizes)
+    for (const test::Shape shape : test::allShapes())
+      if (context.selected(randomName(shape, n)))
+        inputs.push_back(&context.randomSampled(shape, n));
 
   std::vector<InputRun> runs;
   for (const Input* input : inputs)

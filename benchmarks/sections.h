@@ -29,6 +29,8 @@ struct Options
   double timeout = 900;        ///< seconds per isolated run
   std::size_t large = 1000000; ///< size of the large torus
   bool no_peers = false;       ///< ours only (for profiling)
+  /** Sizes of the random-sampled shapes (randomSizes() unless --random is given). */
+  std::vector<std::size_t> random_sizes;
 };
 
 /** \brief A target of the brief with its verdict. */
@@ -71,6 +73,8 @@ public:
   const Input& generated(const std::string& shape, std::size_t n);
   /** \brief The large jittered torus. */
   const Input& largeTorus();
+  /** \brief A shape sampled as a scanner does (area-uniform random) with n samples. */
+  const Input& randomSampled(test::Shape shape, std::size_t n);
 
   /** \brief True when the input's name passes --filter. */
   bool

@@ -86,32 +86,6 @@ split(const std::string& list)
   return items;
 }
 
-const char*
-shapeName(shapes::Shape shape)
-{
-  switch (shape) {
-  case shapes::Shape::sphere:
-    return "sphere";
-  case shapes::Shape::torus:
-    return "torus";
-  case shapes::Shape::trefoil_knot:
-    return "knot";
-  case shapes::Shape::genus3:
-    return "genus3";
-  case shapes::Shape::cube:
-    return "cube";
-  case shapes::Shape::hemisphere:
-    return "hemisphere";
-  case shapes::Shape::open_cylinder:
-    return "open_cylinder";
-  case shapes::Shape::half_cylinder:
-    return "half_cylinder";
-  case shapes::Shape::monkey_saddle:
-    return "monkey_saddle";
-  }
-  return "?";
-}
-
 /** A loop runs along the true rim when at least half of its vertices lie within 3
  * spacings of it; the others are spurious. */
 std::size_t

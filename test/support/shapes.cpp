@@ -1330,6 +1330,32 @@ allShapes()
   return shapes;
 }
 
+const char*
+shapeName(Shape shape)
+{
+  switch (shape) {
+  case Shape::sphere:
+    return "sphere";
+  case Shape::torus:
+    return "torus";
+  case Shape::trefoil_knot:
+    return "knot";
+  case Shape::genus3:
+    return "genus3";
+  case Shape::cube:
+    return "cube";
+  case Shape::hemisphere:
+    return "hemisphere";
+  case Shape::open_cylinder:
+    return "open_cylinder";
+  case Shape::half_cylinder:
+    return "half_cylinder";
+  case Shape::monkey_saddle:
+    return "monkey_saddle";
+  }
+  return "?";
+}
+
 SampledShape
 sampleRandom(Shape shape, std::size_t n, std::uint32_t seed, bool density_ramp)
 {

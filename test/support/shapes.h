@@ -106,6 +106,10 @@ enum class Shape
   monkey_saddle,
 };
 
+/** A Shape's short name: "sphere", "torus", "knot", "genus3", "cube", "hemisphere",
+ * "open_cylinder", "half_cylinder", "monkey_saddle". */
+const char* shapeName(Shape shape);
+
 /** Every Shape, closed ones first. */
 const std::vector<Shape>& allShapes();
 
