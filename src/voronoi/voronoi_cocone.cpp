@@ -353,25 +353,15 @@ VoronoiCocone::delaunayTrianglesAmong(
 
 namespace {
 
-/** The one-line reason of a failure caught in the tile phase, for the root. */
+/** The one-line reason of a failure caught in the tile phase, for the root: what
+ * runGuarded would have said of it ("out of memory during the tile triangulation"). */
 std::string
 reasonOf(const std::exception_ptr& failure)
 {
-  try {
-    std::rethrow_exception(failure);
-  }
-  catch (const StageFailure& stage) {
-    return stage.message;
-  }
-  catch (const std::bad_alloc&) {
-    return "out of memory building its tiles";
-  }
-  catch (const std::exception& e) {
-    return e.what();
-  }
-  catch (...) {
-    return "unknown exception building its tiles";
-  }
+  std::string reason;
+  runGuarded("the tile triangulation", &reason,
+             [&]() -> Status { std::rethrow_exception(failure); });
+  return reason.empty() ? std::string("the tile triangulation failed") : reason;
 }
 
 /** compute() without its outer guard: each stage that allocates much runs in a guard of
