@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "bench_inputs.h"
 
+#include "support/noise.h"
+
 #include <pcl/cocone/io/point_io.h>
 #include <pcl/conversions.h>
 #include <pcl/kdtree/kdtree_flann.h>
@@ -8,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <random>
@@ -253,6 +256,48 @@ randomInput(test::Shape shape, std::size_t n, std::size_t probes)
   input.boundary_loops = sampled->boundary_loops;
   input.reference_probes = test::sampleRandom(shape, probes, 7).points;
   input.shape = std::move(sampled);
+  return input;
+}
+
+std::vector<NoisySpec>
+noisyInputs()
+{
+  std::vector<NoisySpec> specs;
+  for (const double sigma : {0.1, 0.3, 0.5})
+    for (const test::Shape shape :
+         {test::Shape::torus, test::Shape::genus3, test::Shape::hemisphere,
+          test::Shape::open_cylinder, test::Shape::cube})
+      specs.push_back({shape, 100000, sigma});
+  return specs;
+}
+
+std::string
+noisyName(const NoisySpec& spec)
+{
+  std::ostringstream name;
+  name << "noisy-" << randomName(spec.shape, spec.n).substr(std::strlen("random-"))
+       << "-" << spec.sigma_in_spacings;
+  return name.str();
+}
+
+Input
+noisyInput(test::Shape shape, std::size_t n, double sigma_in_spacings,
+           std::size_t probes)
+{
+  Input input = randomInput(shape, n, probes);
+  input.name = noisyName({shape, n, sigma_in_spacings});
+  auto noisy = std::make_shared<test::SampledShape>(
+      test::withGaussianNoise(*input.shape, sigma_in_spacings));
+  std::ostringstream source;
+  source << input.source << ", then isotropic Gaussian noise of sigma "
+         << sigma_in_spacings
+         << " mean spacings (test/support withGaussianNoise, seed 7)";
+  input.source = source.str();
+  input.kind = "noisy";
+  input.points.clear();
+  for (const Eigen::Vector3d& p : noisy->points)
+    input.points.push_back(roundedToFloat(p));
+  input.shape = std::move(noisy);
   return input;
 }
 

@@ -154,6 +154,23 @@ Input randomInput(test::Shape shape, std::size_t n, std::size_t probes);
 /** \brief The name of a random input: "random-open-cylinder-1M". */
 std::string randomName(test::Shape shape, std::size_t n);
 
+/** \brief randomInput with scanner noise: isotropic Gaussian displacements of standard
+ * deviation \a sigma_in_spacings mean spacings (test::withGaussianNoise, seed 7). The
+ * reference surface stays the true one. Named "noisy-torus-100k-0.3". */
+Input noisyInput(test::Shape shape, std::size_t n, double sigma_in_spacings,
+                 std::size_t probes);
+
+/** \brief The noisy inputs: the five shapes of issue 23 (torus, genus 3, hemisphere,
+ * open cylinder, cube) at 100k random samples, noise of 0.1, 0.3 and 0.5 spacings. */
+struct NoisySpec
+{
+  test::Shape shape;
+  std::size_t n;
+  double sigma_in_spacings;
+};
+std::vector<NoisySpec> noisyInputs();
+std::string noisyName(const NoisySpec& spec);
+
 /** \brief The sizes the shapes are randomly sampled at: 100k points, and 1M and 4M
  * unless \a quick. */
 std::vector<std::size_t> randomSizes(bool quick);

@@ -131,6 +131,21 @@ Context::randomSampled(test::Shape shape, std::size_t n)
   return *(inputs_[key] = std::move(input));
 }
 
+const Input&
+Context::noisy(const NoisySpec& spec)
+{
+  const std::string key = "noisy:" + noisyName(spec);
+  auto it = inputs_.find(key);
+  if (it != inputs_.end())
+    return *it->second;
+  progress("sampling " + noisyName(spec) + " (area-uniform random, Gaussian noise)");
+  const std::size_t probes = std::min<std::size_t>(spec.n, 100000);
+  auto input = std::make_unique<Input>(
+      noisyInput(spec.shape, spec.n, spec.sigma_in_spacings, probes));
+  finishInput(*input, probes);
+  return *(inputs_[key] = std::move(input));
+}
+
 } // namespace bench
 } // namespace cocone
 } // namespace pcl

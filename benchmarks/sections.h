@@ -73,6 +73,8 @@ public:
   const Input& generated(const std::string& shape, std::size_t n);
   /** \brief The large jittered torus. */
   const Input& largeTorus();
+  /** \brief A random sample with scanner noise (noisyInputs()). */
+  const Input& noisy(const NoisySpec& spec);
   /** \brief A shape sampled as a scanner does (area-uniform random) with n samples. */
   const Input& randomSampled(test::Shape shape, std::size_t n);
 
