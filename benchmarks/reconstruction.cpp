@@ -128,6 +128,7 @@ runCocone(const Input& input, bool quality, Measurement& m)
   m.values["t_walk"] = report.timings.walk;
   m.values["t_stitching"] = report.timings.stitching;
   m.values["t_finishing"] = report.timings.finishing;
+  m.values["t_restore"] = report.timings.restore;
   m.values["stitched_holes"] = static_cast<double>(report.stitched_holes);
   m.values["unused"] = static_cast<double>(reconstruction.getUnusedIndices().size());
   if (quality)
@@ -582,16 +583,18 @@ runReconstructionSection(Context& context)
     add("bare Delaunay (its own run)", dt);
     add("core alone: Delaunay (its own run)", largest->core.value("t_delaunay"));
     add("core alone: geometry (its own run)", largest->core.value("t_geometry"));
-    add("CoconeReconstruction: core (Delaunay + geometry, by difference)",
+    add("CoconeReconstruction: core (smoothing where on, Delaunay, geometry; by "
+        "difference)",
         m.seconds - m.value("t_boundary") - m.value("t_candidates") -
             m.value("t_pruning") - m.value("t_walk") - m.value("t_stitching") -
-            m.value("t_finishing"));
+            m.value("t_finishing") - m.value("t_restore"));
     add("BOUNDARY", m.value("t_boundary"));
     add("candidates, spacing, lids", m.value("t_candidates"));
     add("pruning", m.value("t_pruning"));
     add("walk", m.value("t_walk"));
     add("stitching", m.value("t_stitching"));
     add("finishing", m.value("t_finishing"));
+    add("back at the input positions (denoised only)", m.value("t_restore"));
     add("total CoconeReconstruction", m.seconds);
     report.table(stages);
   }

@@ -442,6 +442,73 @@ TEST(MeshChecks, ClosedMeshesDoNotSelfIntersect)
   EXPECT_GT(pcl::cocone::countSelfIntersections(torus, triangles), 0u);
 }
 
+/** Every pair of \a triangles, each tested alone: what findSelfIntersections must
+ * find with its grid or its segment tree. */
+std::vector<std::pair<std::size_t, std::size_t>>
+everyIntersectingPair(const Points& points, const Triangles& triangles)
+{
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for (std::size_t a = 0; a < triangles.size(); ++a)
+    for (std::size_t b = a + 1; b < triangles.size(); ++b)
+      if (pcl::cocone::trianglesIntersect(points, triangles[a], triangles[b]))
+        pairs.emplace_back(a, b);
+  return pairs;
+}
+
+// The box search finds exactly the pairs that testing every pair finds: on a folded
+// torus (the grid of cells), on a lattice whose triangles touch along cell walls, and
+// with huge triangles through a fine mesh (beyond the grid's budget: the segment tree).
+TEST(MeshChecks, SelfIntersectionsAreThoseOfEveryPair)
+{
+  std::mt19937 random(11);
+  const Triangles torus_triangles = grid(40, 20, true, true);
+  for (const double noise : {0.0, 0.01, 0.03, 0.1}) {
+    std::normal_distribution<double> jitter(0, noise);
+    Points torus = torusPoints(40, 20);
+    for (Eigen::Vector3d& p : torus)
+      p += Eigen::Vector3d(jitter(random), jitter(random), jitter(random));
+    const auto expected = everyIntersectingPair(torus, torus_triangles);
+    EXPECT_EQ(pcl::cocone::findSelfIntersections(torus, torus_triangles), expected)
+        << "noise " << noise;
+    if (noise >= 0.1)
+      EXPECT_FALSE(expected.empty()) << "noise " << noise;
+  }
+
+  // Integer coordinates: boxes meet exactly on the cells' walls; every third quad is
+  // repeated with its diagonal flipped, which overlaps it in its plane.
+  Points lattice;
+  for (int i = 0; i < 12; ++i)
+    for (int j = 0; j < 12; ++j)
+      lattice.emplace_back(i, j, (i * j) % 3 == 0 ? 0 : 1);
+  Triangles folded = grid(12, 12, false, false);
+  for (std::uint32_t q = 0; q + 2 < 11 * 11; q += 3) {
+    const std::uint32_t i = q / 11, j = q % 11;
+    const std::uint32_t a = i * 12 + j, b = a + 1, c = a + 13, d = a + 12;
+    folded.push_back({a, b, d});
+    folded.push_back({b, c, d});
+  }
+  const auto lattice_expected = everyIntersectingPair(lattice, folded);
+  EXPECT_FALSE(lattice_expected.empty());
+  EXPECT_EQ(pcl::cocone::findSelfIntersections(lattice, folded), lattice_expected);
+
+  // Three huge triangles through the torus's tube. The grid's cells are about 0.3
+  // wide, so each of them covers more than 60 x 60 x 3 cells, over the budget of 8 per
+  // triangle: the segment tree answers.
+  Points with_huge = torusPoints(40, 20);
+  Triangles huge_triangles = torus_triangles;
+  for (int k = 0; k < 3; ++k) {
+    const auto first = static_cast<std::uint32_t>(with_huge.size());
+    with_huge.emplace_back(-10, -10 + k, -0.5);
+    with_huge.emplace_back(10, -10, 0.5);
+    with_huge.emplace_back(0, 10, 0.1 * k);
+    huge_triangles.push_back({first, first + 1, first + 2});
+  }
+  const auto huge_expected = everyIntersectingPair(with_huge, huge_triangles);
+  EXPECT_FALSE(huge_expected.empty());
+  EXPECT_EQ(pcl::cocone::findSelfIntersections(with_huge, huge_triangles),
+            huge_expected);
+}
+
 TEST(MeshChecks, SharedVertexAndSharedEdgeCases)
 {
   // Triangles 0: (0, 1, 2) in z = 0; the others share vertex 0 or edge 0-1 with it.

@@ -419,10 +419,11 @@ public:
     report["too_sparse_for_boundary_detection"] =
         statistics.tooSparseForBoundaryDetection();
     const auto& t = statistics.timings;
-    report["timings"] = py::dict(
-        "boundary"_a = t.boundary, "candidates"_a = t.candidates,
-        "pruning"_a = t.pruning, "walk"_a = t.walk, "stitching"_a = t.stitching,
-        "finishing"_a = t.finishing, "reconstruct"_a = reconstruct_seconds);
+    report["timings"] =
+        py::dict("boundary"_a = t.boundary, "candidates"_a = t.candidates,
+                 "pruning"_a = t.pruning, "walk"_a = t.walk,
+                 "stitching"_a = t.stitching, "finishing"_a = t.finishing,
+                 "restore"_a = t.restore, "reconstruct"_a = reconstruct_seconds);
     report["far_indices"] = far_indices;
     report["warning"] = warning;
     report_ = report;

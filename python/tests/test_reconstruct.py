@@ -71,7 +71,7 @@ def test_mesh_parts_and_report(hemisphere_points):
     assert report["triangles"] == len(mesh.triangles)
     timings = report["timings"]
     assert set(timings) == {"boundary", "candidates", "pruning", "walk", "stitching",
-                            "finishing", "reconstruct"}
+                            "finishing", "restore", "reconstruct"}
     stages = sum(seconds for stage, seconds in timings.items() if stage != "reconstruct")
     assert 0 < stages <= timings["reconstruct"]
     assert report["warning"] == "" and len(report["far_indices"]) == 0

@@ -175,10 +175,15 @@ restoreInputPositions(const VoronoiCocone& voronoi,
                       std::vector<TriangleIndices>& output,
                       ReconstructionReport& report)
 {
+  const auto start = std::chrono::steady_clock::now();
   const detail::RestoreRepair repair =
       detail::restoreInputPositions(voronoi.centeredInputPoints(), output);
   report.restore_removed_triangles = repair.removed_triangles;
   report.restore_filled_triangles = repair.filled_triangles;
+  report.timings.restore =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  PCL_DEBUG("[pcl::cocone::reconstructSurface] back at the input positions: %.3f s\n",
+            report.timings.restore);
   if (repair.removed_triangles == 0)
     return;
   const MeshTopology topology = analyzeTriangleMesh(output);

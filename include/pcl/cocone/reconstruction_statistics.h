@@ -63,7 +63,10 @@ struct ReconstructionStatistics
     double walk = 0;       ///< walk and pinch resolution
     double stitching = 0;  ///< stitching, sample insertion, crossing removal
     double finishing = 0;  ///< orientation, loops, unused samples
-  } timings;               ///< wall-clock seconds of each stage
+    /** Denoised diagrams only: back at the input positions, crossing triangles found
+     * (exact predicates), removed and their holes filled. */
+    double restore = 0;
+  } timings; ///< wall-clock seconds of each stage
 };
 
 } // namespace cocone

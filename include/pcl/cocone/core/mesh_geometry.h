@@ -47,7 +47,8 @@ segmentCrossesTriangle(const std::vector<Eigen::Vector3d>& points, std::uint32_t
 
 /** \brief The pairs of triangles of a mesh that intersect (see trianglesIntersect).
  * Triangles without area (a repeated index or collinear corners) are skipped.
- * Bounding-box filtered: O(T log T) for a well-spread mesh.
+ * Bounding-box filtered: a uniform grid for a mesh of triangles alike in size (a few box
+ * tests per triangle), CGAL's segment tree otherwise (O(T log^3 T) for any mesh).
  * \param[in] points the vertex coordinates (any unit)
  * \param[in] triangles the mesh, as index triples into \a points
  * \return the intersecting pairs as positions in \a triangles, the smaller first,
@@ -59,7 +60,7 @@ findSelfIntersections(const std::vector<Eigen::Vector3d>& points,
 
 /** \brief Counts the pairs of triangles of a mesh that intersect (see
  * trianglesIntersect). Triangles without area (a repeated index or collinear corners)
- * are skipped. Bounding-box filtered: O(T log T) for a well-spread mesh.
+ * are skipped. Bounding-box filtered, as findSelfIntersections.
  * \param[in] points the vertex coordinates (any unit)
  * \param[in] triangles the mesh, as index triples into \a points
  * \return the number of intersecting pairs; 0 for a mesh without self-intersection
