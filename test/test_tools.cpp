@@ -15,6 +15,7 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -22,6 +23,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <limits>
 #include <regex>
 #include <sstream>
@@ -181,7 +183,7 @@ protected:
   static ToolRun
   run(const std::string& tool, const Args& args, const std::string& launcher = "")
   {
-    static int counter = 0;
+    static std::atomic<int> counter{0}; // some tests run tools side by side
     const std::string id = std::to_string(counter++);
     const fs::path program =
         tool == kPipeline ? fs::path(kExampleDir) / tool : fs::path(kToolDir) / tool;
@@ -765,6 +767,32 @@ TEST_F(Tools, ReconstructionAsIndependentJobsWritesTheSameMesh)
                       "-job needs -jobs");
   expectArgumentError(run(kReconstruction, {input, output, "-jobs", "2", "-job", "2"}),
                       "-job 2 must be below -jobs 2");
+  expectArgumentError(run(kReconstruction, {input, output, "-wait", "10"}),
+                      "-wait needs -jobs");
+
+  // All three at once: job 0 waits for the others' files, and the mesh is the same.
+  // (The files of the failed run above go first: job 0 takes any whole file made from
+  // the same input and options, as the README says.)
+  fs::remove(output + ".job-1-of-3.tiles");
+  fs::remove(output + ".job-2-of-3.tiles");
+  auto waiting = std::async(std::launch::async, [&] {
+    return job(0, {"-wait", "600"});
+  });
+  expectSuccess(job(2));
+  expectSuccess(job(1));
+  expectSuccess(waiting.get());
+  EXPECT_TRUE(readText(output) == readText(path("torus_1.ply")))
+      << "the mesh of jobs run side by side differs from one run's";
+  EXPECT_FALSE(fs::exists(output + ".job-1-of-3.tiles"));
+  // A job that never comes: job 0 gives up after its wait, naming the file.
+  expectSuccess(job(1));
+  expectOneLineFailure(job(0, {"-wait", "1"}),
+                       "torus_jobs.ply.job-2-of-3.tiles did not appear within the 1 s");
+  // A file from other options is refused before the wait and the work.
+  expectSuccess(job(2, {"-theta", "0.3"}));
+  const ToolRun foreign = job(0, {"-wait", "600"});
+  expectOneLineFailure(foreign, "was made from another input or other options");
+  EXPECT_EQ(foreign.out.find("Computing"), std::string::npos) << foreign.out;
 }
 
 TEST_F(Tools, ReconstructionOptionsAreAcceptedAndVerboseShowsTheStages)

@@ -6,11 +6,13 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <system_error>
+#include <thread>
 
 namespace pcl {
 namespace cocone {
@@ -65,9 +67,9 @@ fingerprintBytes(const void* bytes, std::size_t size, std::uint64_t hash)
 }
 
 JobFiles::JobFiles(unsigned job, unsigned jobs, std::string output,
-                   std::string fingerprint)
+                   std::string fingerprint, double wait_seconds)
   : job_(job), jobs_(jobs), output_(std::move(output)),
-    fingerprint_(std::move(fingerprint))
+    fingerprint_(std::move(fingerprint)), wait_seconds_(wait_seconds)
 {}
 
 std::string
@@ -109,9 +111,26 @@ JobFiles::gatherToRoot(const std::vector<std::uint8_t>& message)
       give_up("cannot rename " + temporary + " to " + path + ": " + error.message());
     return {};
   }
+  // The files still missing are polled, a little less often the longer the wait (a
+  // shared file system is not to be hammered), until the deadline.
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                         std::chrono::duration<double>(wait_seconds_));
   std::vector<std::vector<std::uint8_t>> messages(jobs_);
   for (unsigned r = 1; r < jobs_; ++r) {
     const std::string path = fileOf(r);
+    std::chrono::milliseconds pause(100);
+    std::error_code error;
+    while (!std::filesystem::exists(path, error) && Clock::now() < deadline) {
+      std::this_thread::sleep_for(
+          std::min<Clock::duration>(pause, deadline - Clock::now()));
+      pause = std::min(2 * pause, std::chrono::milliseconds(5000));
+    }
+    if (wait_seconds_ > 0 && !std::filesystem::exists(path, error))
+      throw std::runtime_error(path + " did not appear within the " +
+                               std::to_string(static_cast<long long>(wait_seconds_)) +
+                               " s of -wait: did job " + std::to_string(r) + " run?");
     std::ifstream in = openChecked(path, r, jobs_, fingerprint_);
     std::uint64_t length = 0;
     in.read(reinterpret_cast<char*>(&length), sizeof length);
@@ -132,8 +151,12 @@ JobFiles::gatherToRoot(const std::vector<std::uint8_t>& message)
 void
 JobFiles::checkOthersReady() const
 {
-  for (unsigned r = 1; r < jobs_; ++r)
+  for (unsigned r = 1; r < jobs_; ++r) {
+    std::error_code error;
+    if (wait_seconds_ > 0 && !std::filesystem::exists(fileOf(r), error))
+      continue; // still running: waited for once job 0's own tiles are built
     openChecked(fileOf(r), r, jobs_, fingerprint_);
+  }
 }
 
 void

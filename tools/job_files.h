@@ -2,9 +2,10 @@
 //
 // Tiles as independent jobs, without MPI: a TileExchange (core/tile_exchange.h) through
 // files next to the output. Job R of N (R > 0) computes its share of the tiles and
-// writes it to OUTPUT.job-R-of-N.tiles; job 0, run after the others (a Slurm job array
-// with a dependency, GNU parallel, a shell loop), reads them, joins, writes the mesh
-// and removes the files.
+// writes it to OUTPUT.job-R-of-N.tiles; job 0 reads them, joins, writes the mesh and
+// removes the files. Job 0 runs after the others (a Slurm job array with a dependency,
+// GNU parallel, a shell loop), or beside them with a wait: it builds its own tiles
+// meanwhile and then waits for the files still missing.
 #pragma once
 
 #include <pcl/cocone/core/tile_exchange.h>
@@ -22,8 +23,10 @@ class JobFiles : public TileExchange
 public:
   /** Job \a job of \a jobs writing or reading next to \a output. \a fingerprint names
    * the input and the options that shape the diagram: job 0 refuses a file written
-   * with another. */
-  JobFiles(unsigned job, unsigned jobs, std::string output, std::string fingerprint);
+   * with another. Job 0 waits up to \a wait_seconds for a file that is missing once
+   * its own tiles are built (0: the other jobs must have finished before it starts). */
+  JobFiles(unsigned job, unsigned jobs, std::string output, std::string fingerprint,
+           double wait_seconds = 0);
 
   unsigned
   rank() const override
@@ -36,14 +39,16 @@ public:
     return jobs_;
   }
   /** Job R > 0: writes \a message (atomically: a temporary file renamed). Job 0: reads
-   * every other job's file; throws std::runtime_error naming the first file that is
-   * missing, unreadable or made from another input or other options. */
+   * every other job's file, waiting for a missing one as set; throws
+   * std::runtime_error naming the first file that is missing (after the wait),
+   * unreadable or made from another input or other options. */
   std::vector<std::vector<std::uint8_t>>
   gatherToRoot(const std::vector<std::uint8_t>& message) override;
 
   /** Job 0, before its own tiles: throws std::runtime_error naming the first other
-   * job's file that is missing or was made from another input, options or version,
-   * so that a missing job is found before hours of work rather than after. */
+   * job's file that is missing (unless job 0 waits for it) or was made from another
+   * input, options or version, so that a mistake is found before hours of work
+   * rather than after. */
   void checkOthersReady() const;
 
   /** Job 0, once the mesh is written: removes the other jobs' files. */
@@ -55,6 +60,7 @@ public:
 private:
   unsigned job_, jobs_;
   std::string output_, fingerprint_;
+  double wait_seconds_;
 };
 
 /** A 64-bit FNV-1a hash of \a bytes, continuing \a hash: the input's fingerprint. */

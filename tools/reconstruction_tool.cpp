@@ -65,8 +65,15 @@ commandLine(bool distributed)
          "tiles next to OUTPUT, then job 0 joins them and writes the mesh (README)",
          0, "0 = one job", pcl::cocone::ParameterRange{0, 1024, false, false}});
     options.push_back({"-job", ValueKind::integer, "R",
-                       "which of the -jobs N jobs this is, 0 to N-1; run 0 last", 0, "",
-                       pcl::cocone::ParameterRange{0, 1023, false, false}});
+                       "which of the -jobs N jobs this is, 0 to N-1; run 0 last, or "
+                       "beside the others with -wait",
+                       0, "", pcl::cocone::ParameterRange{0, 1023, false, false}});
+    options.push_back(
+        {"-wait", ValueKind::integer, "S",
+         "job 0 may start with the others: it builds its own tiles, then waits up to S "
+         "seconds for the other jobs' files (ignored by the other jobs)",
+         0, "0 = the others must have finished",
+         pcl::cocone::ParameterRange{0, 30 * 24 * 3600, false, false}});
   }
   options.push_back(verboseOption());
   return CommandLine(
@@ -87,6 +94,8 @@ checkJobOptions(const CommandLine& cmd)
   const unsigned jobs = cmd.count("-jobs"), job = cmd.count("-job");
   if (jobs == 0 && job != 0)
     fail("-job needs -jobs");
+  if (jobs == 0 && cmd.count("-wait") != 0)
+    fail("-wait needs -jobs");
   if (jobs > 0 && job >= jobs)
     fail("-job " + std::to_string(job) + " must be below -jobs " +
          std::to_string(jobs));
@@ -112,7 +121,8 @@ jobFiles(const CommandLine& cmd, const pcl::PointCloud<pcl::PointXYZ>& xyz)
       std::string(hex) + " n " + std::to_string(xyz.size()) + " theta " +
       formatNumber(cmd.value("-theta"), 17) + " denoise " + cmd.choice("-denoise") +
       " tiles " + std::to_string(cmd.count("-tiles"));
-  return std::make_shared<JobFiles>(job, jobs, cmd.output(), fingerprint);
+  return std::make_shared<JobFiles>(job, jobs, cmd.output(), fingerprint,
+                                    cmd.count("-wait"));
 }
 
 /** When the reconstruction found the cloud too sparse for boundary detection, sets
