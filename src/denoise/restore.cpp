@@ -171,6 +171,55 @@ removePinches(std::vector<TriangleIndices>& triangles,
   }
 }
 
+/** Removes the components of \a triangles (joined through edges) of at most
+ * kMaxRestoreScrap triangles whose vertices were all \a repaired: scraps the repair
+ * cut off, such as a lone triangle whose neighbours crossed others and whose own loop
+ * no fill can close (its least-area fill is itself). A small piece the mesher made on
+ * its own keeps some vertex the repair did not touch, and stays. Returns how many
+ * triangles were removed. */
+std::size_t
+removeRepairScraps(std::vector<TriangleIndices>& triangles,
+                   const std::vector<std::uint8_t>& repaired)
+{
+  // Union-find over the triangles, through the edges they share.
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> sides; // (edge, triangle)
+  sides.reserve(3 * triangles.size());
+  for (std::uint32_t t = 0; t < triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k)
+      sides.emplace_back(edgeKey(triangles[t][k], triangles[t][(k + 1) % 3]), t);
+  std::sort(sides.begin(), sides.end());
+  std::vector<std::uint32_t> parent(triangles.size());
+  for (std::uint32_t t = 0; t < parent.size(); ++t)
+    parent[t] = t;
+  const auto root = [&](std::uint32_t t) {
+    while (parent[t] != t)
+      t = parent[t] = parent[parent[t]];
+    return t;
+  };
+  for (std::size_t i = 1; i < sides.size(); ++i)
+    if (sides[i].first == sides[i - 1].first)
+      parent[root(sides[i].second)] = root(sides[i - 1].second);
+  std::vector<std::uint32_t> size(triangles.size(), 0);
+  std::vector<std::uint8_t> all_repaired(triangles.size(), 1);
+  for (std::uint32_t t = 0; t < triangles.size(); ++t) {
+    const std::uint32_t r = root(t);
+    ++size[r];
+    for (const std::uint32_t v : triangles[t])
+      if (!repaired[v])
+        all_repaired[r] = 0;
+  }
+  std::size_t kept = 0;
+  for (std::uint32_t t = 0; t < triangles.size(); ++t) {
+    const std::uint32_t r = root(t);
+    if (size[r] <= kMaxRestoreScrap && all_repaired[r])
+      continue;
+    triangles[kept++] = triangles[t];
+  }
+  const std::size_t removed = triangles.size() - kept;
+  triangles.resize(kept);
+  return removed;
+}
+
 } // namespace
 
 RestoreRepair
@@ -180,6 +229,9 @@ restoreInputPositions(const std::vector<Eigen::Vector3d>& points,
   RestoreRepair repair;
   std::vector<std::pair<std::size_t, std::size_t>> pairs =
       findSelfIntersections(points, triangles);
+  if (pairs.empty())
+    return repair;
+  std::vector<std::uint8_t> repaired(points.size(), 0); // over all rounds
   // Two rounds remove and fill; a third removes what still crosses without filling,
   // which cannot make a new crossing.
   for (int round = 0; round < 3 && !pairs.empty(); ++round) {
@@ -199,11 +251,14 @@ restoreInputPositions(const std::vector<Eigen::Vector3d>& points,
     }
     triangles.resize(kept);
     repair.removed_triangles += removePinches(triangles, touched);
+    for (std::size_t v = 0; v < points.size(); ++v)
+      repaired[v] |= touched[v];
     if (round == 2)
       break;
     repair.filled_triangles += fillHoles(points, touched, triangles);
     pairs = findSelfIntersections(points, triangles);
   }
+  repair.removed_triangles += removeRepairScraps(triangles, repaired);
   return repair;
 }
 

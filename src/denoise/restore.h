@@ -20,6 +20,11 @@ namespace detail {
  * dozen vertices. */
 constexpr std::size_t kMaxRestoreLoop = 64;
 
+/** The largest piece restoreInputPositions removes when the repair has cut it off from
+ * the rest (triangles): the scraps seen are single triangles, whose samples then count
+ * as unused. */
+constexpr std::size_t kMaxRestoreScrap = 4;
+
 /** What restoreInputPositions did. */
 struct RestoreRepair
 {
@@ -34,7 +39,9 @@ struct RestoreRepair
  * boundary loop through a vertex of a removed triangle, of at most kMaxRestoreLoop
  * vertices) is filled with the triangulation of least area that crosses no triangle of
  * the mesh (the mesher's fill). Two rounds remove and fill; a third removes what still
- * crosses and leaves its hole open, so that no crossing is left. Deterministic. */
+ * crosses and leaves its hole open, so that no crossing is left. Last, pieces of at
+ * most kMaxRestoreScrap triangles whose every vertex the repair touched are removed:
+ * the repair cut them off. Deterministic. */
 RestoreRepair restoreInputPositions(const std::vector<Eigen::Vector3d>& points,
                                     std::vector<TriangleIndices>& triangles);
 
