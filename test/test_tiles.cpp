@@ -418,6 +418,24 @@ TEST(Tiles, BadMessagesFromOtherProcessesFailWithAReason)
   f.exchange = failing_root;
   EXPECT_EQ(VoronoiCocone(f).compute(with_nan), Status::non_finite_input);
   EXPECT_EQ(failing_root->calls, 1);
+  // Its message says it failed, so that an exchange need not wait for the others.
+  ASSERT_FALSE(failing_root->sent.empty());
+  EXPECT_EQ(failing_root->sent[0], 2);
+  // And when the exchange then fails too, the root's own failure is the one reported.
+  struct ThrowingExchange : FixedRankExchange
+  {
+    ThrowingExchange() : FixedRankExchange(0, 2) {}
+    std::vector<std::vector<std::uint8_t>>
+    gatherToRoot(const std::vector<std::uint8_t>&) override
+    {
+      throw std::runtime_error("the other job's file did not appear");
+    }
+  };
+  f.exchange = std::make_shared<ThrowingExchange>();
+  VoronoiCocone failing_twice(f);
+  EXPECT_EQ(failing_twice.compute(with_nan), Status::non_finite_input);
+  EXPECT_NE(failing_twice.errorMessage().find("non-finite"), std::string::npos)
+      << failing_twice.errorMessage();
 
   // A process with an invalid rank.
   VoronoiParameters lost_parameters;

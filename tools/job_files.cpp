@@ -111,6 +111,8 @@ JobFiles::gatherToRoot(const std::vector<std::uint8_t>& message)
       give_up("cannot rename " + temporary + " to " + path + ": " + error.message());
     return {};
   }
+  if (!message.empty())
+    return std::vector<std::vector<std::uint8_t>>(jobs_); // job 0 failed: no wait
   // The files still missing are polled, a little less often the longer the wait (a
   // shared file system is not to be hammered), until the deadline.
   using Clock = std::chrono::steady_clock;

@@ -378,7 +378,8 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
   // Several processes (core/tile_exchange.h): this one builds the tiles dealt to it,
   // and calls the exchange exactly once, whatever happens: a process that fails
   // before its tiles are sent sends its reason instead, and a root that fails first
-  // still takes every message, so that no process waits for another forever.
+  // still calls it, so that no process waits for another forever. A failed root hands
+  // its reason too, which tells the exchange that it will read nothing.
   TileExchange* const exchange = parameters.exchange.get();
   const unsigned rank = exchange ? exchange->rank() : 0;
   const unsigned ranks = exchange ? exchange->size() : 1;
@@ -387,8 +388,7 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
     if (!exchanged) {
       exchanged = true;
       try {
-        exchange->gatherToRoot(rank == 0 ? std::vector<std::uint8_t>()
-                                         : packFailure(message));
+        exchange->gatherToRoot(packFailure(message)); // the root too: see below
       }
       catch (...) { // the failure reported here says more than the exchange's
       }
@@ -630,20 +630,29 @@ buildDiagram(DiagramState& d, const VoronoiParameters& parameters,
       // Every process sends, even one whose tiles gave up or failed, so that none
       // waits.
       const std::uint64_t fingerprint = diagramFingerprint(d, tiling);
+      // The root sends nothing unless it failed: then its reason tells the exchange
+      // that the others' messages will not be read (job files need not wait for them).
       std::vector<std::uint8_t> mine_message;
-      if (rank != 0) {
-        try {
-          mine_message = failure ? packFailure(reasonOf(failure))
-                                 : packTiles(tiling, mine, complete, fingerprint, d,
-                                             contributions);
-        }
-        catch (...) {
-          mine_message = packFailure("out of memory packing its tiles");
-        }
+      try {
+        if (failure)
+          mine_message = packFailure(reasonOf(failure));
+        else if (rank != 0)
+          mine_message =
+              packTiles(tiling, mine, complete, fingerprint, d, contributions);
+      }
+      catch (...) {
+        mine_message = packFailure("out of memory packing its tiles");
       }
       exchanged = true;
-      std::vector<std::vector<std::uint8_t>> messages =
-          exchange->gatherToRoot(mine_message);
+      std::vector<std::vector<std::uint8_t>> messages;
+      try {
+        messages = exchange->gatherToRoot(mine_message);
+      }
+      catch (...) {
+        if (!failure)
+          throw;
+        // This process's own failure came first and is the one to report.
+      }
       if (failure)
         std::rethrow_exception(failure);
       if (rank != 0)

@@ -43,7 +43,11 @@ public:
 
   /** \brief Hands each process's tiles to the root: called exactly once per diagram by
    * every process. May throw; the diagram then fails with Status::internal_error.
-   * \param[in] message this process's tiles (empty on the root); it can exceed 2 GiB
+   * \param[in] message this process's tiles; it can exceed 2 GiB. On the root it is
+   *            empty, unless the root has failed: then it holds the failure, the root
+   *            will not read the others' messages, and an exchange that would wait for
+   *            them (job files) need not; one that must let the senders finish (MPI)
+   *            still receives them
    * \return on the root, the message of every process indexed by rank (entry 0 left
    *         empty); elsewhere, after sending \a message to the root, an empty vector */
   virtual std::vector<std::vector<std::uint8_t>>
