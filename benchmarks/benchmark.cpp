@@ -275,19 +275,25 @@ main(int argc, char** argv)
       options.large = static_cast<std::size_t>(number(1000, 1e8));
     else if (arg == "--random") {
       random_sizes_given = true;
+      options.random_sizes.clear(); // the last --random counts
       const std::string text = value();
       std::stringstream list(text);
       std::string item;
       while (text != "none" && std::getline(list, item, ',')) {
         char* end = nullptr;
         const double parsed = std::strtod(item.c_str(), &end);
-        if (item.empty() || *end != '\0' || !(parsed >= 1000 && parsed <= 1e8)) {
+        if (item.empty() || *end != '\0' || !(parsed >= 1000 && parsed <= 1e8) ||
+            parsed != std::floor(parsed)) {
           std::cerr << "pcl_cocone_benchmark: --random takes sizes from 1000 to 1e8 "
                        "separated by commas, or none, not '"
                     << text << "'\n";
           return 1;
         }
         options.random_sizes.push_back(static_cast<std::size_t>(parsed));
+      }
+      if (text.empty()) {
+        std::cerr << "pcl_cocone_benchmark: --random needs sizes or none\n";
+        return 1;
       }
     }
     else if (arg == "--help" || arg == "-h") {

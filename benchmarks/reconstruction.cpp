@@ -715,7 +715,7 @@ runReconstructionSection(Context& context)
           "exact topology (one component, the true loops and genus), 99% "
           "of the samples, Hausdorff <= 1% of the diagonal, no "
           "non-manifold edge or self-intersection; faster than scale space",
-          misses.empty() && faster == timed ? 1 : 0, evidence);
+          misses.empty() && timed == noisy && faster == timed ? 1 : 0, evidence);
     }
   }
   // Large inputs: ours vs Delaunay and the peers.
@@ -779,11 +779,16 @@ runReconstructionSection(Context& context)
   double worst = 0;
   std::string worst_input;
   std::size_t random_1m = 0;
+  std::vector<std::string> random_failed;
   for (const InputRun& r : runs) {
-    const Measurement* ours = r.find(kOurs);
-    if (r.input->kind != "random" || r.input->size() != 1000000 || !ours)
+    if (r.input->kind != "random" || r.input->size() != 1000000)
       continue;
     ++random_1m;
+    const Measurement* ours = r.find(kOurs);
+    if (!ours || !r.delaunay.ok) {
+      random_failed.push_back(r.input->name);
+      continue;
+    }
     const double factor = ours->seconds / r.delaunay.seconds;
     if (factor > worst) {
       worst = factor;
@@ -794,9 +799,12 @@ runReconstructionSection(Context& context)
     context.setTarget("1M random samples vs Delaunay",
                       "whole reconstruction of each 1M random sample within 2.2x the "
                       "bare Delaunay time",
-                      worst <= 2.2 ? 1 : 0,
+                      worst <= 2.2 && random_failed.empty() ? 1 : 0,
                       "worst " + ratio(worst) + " (" + worst_input + ") of " +
-                          std::to_string(random_1m) + " inputs");
+                          std::to_string(random_1m) + " inputs" +
+                          (random_failed.empty()
+                               ? std::string()
+                               : "; failed: " + std::to_string(random_failed.size())));
 }
 
 } // namespace bench

@@ -429,6 +429,33 @@ TEST(MeshChecks, CrossingTrianglesIntersectOnce)
   EXPECT_EQ(pcl::cocone::countSelfIntersections(apart, {{0, 1, 2}, {3, 4, 5}}), 0u);
 }
 
+// The answer is the exact one at any scale, where double arithmetic underflows or
+// overflows too; a triangle with a non-finite corner is skipped.
+TEST(MeshChecks, CrossingsAtExtremeScalesAndNonFiniteCorners)
+{
+  const Points crossing = {{0, 0, 0},      {2, 0, 0},     {0, 2, 0},
+                           {0.5, 0.5, -1}, {0.5, 0.5, 1}, {1.5, 0.2, 0}};
+  const Points apart = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0},
+                        {0, 0, 5}, {1, 0, 5}, {0, 1, 6}};
+  for (const double scale : {1e-160, 1e-100, 1.0, 1e100, 1e150}) {
+    Points c = crossing, a = apart;
+    for (Eigen::Vector3d& p : c)
+      p *= scale;
+    for (Eigen::Vector3d& p : a)
+      p *= scale;
+    EXPECT_EQ(pcl::cocone::countSelfIntersections(c, {{0, 1, 2}, {3, 4, 5}}), 1u)
+        << scale;
+    EXPECT_EQ(pcl::cocone::countSelfIntersections(a, {{0, 1, 2}, {3, 4, 5}}), 0u)
+        << scale;
+  }
+  Points with_nan = crossing;
+  with_nan.emplace_back(std::nan(""), 0, 0);
+  EXPECT_EQ(
+      pcl::cocone::countSelfIntersections(with_nan, {{0, 1, 2}, {3, 4, 5}, {0, 1, 6}}),
+      1u);
+  EXPECT_FALSE(pcl::cocone::trianglesIntersect(with_nan, {0, 1, 6}, {3, 4, 5}));
+}
+
 TEST(MeshChecks, ClosedMeshesDoNotSelfIntersect)
 {
   EXPECT_EQ(pcl::cocone::countSelfIntersections(tetrahedronPoints(), tetrahedron()),

@@ -130,9 +130,11 @@ JobFiles::gatherToRoot(const std::vector<std::uint8_t>& message)
       pause = std::min(2 * pause, std::chrono::milliseconds(5000));
     }
     if (wait_seconds_ > 0 && !std::filesystem::exists(path, error))
-      throw std::runtime_error(path + " did not appear within the " +
-                               std::to_string(static_cast<long long>(wait_seconds_)) +
-                               " s of -wait: did job " + std::to_string(r) + " run?");
+      throw std::runtime_error(
+          error ? "cannot look for " + path + ": " + error.message()
+                : path + " did not appear within the " +
+                      std::to_string(static_cast<long long>(wait_seconds_)) +
+                      " s of -wait: did job " + std::to_string(r) + " run?");
     std::ifstream in = openChecked(path, r, jobs_, fingerprint_);
     std::uint64_t length = 0;
     in.read(reinterpret_cast<char*>(&length), sizeof length);

@@ -84,7 +84,9 @@ intersectBeyondSharedFeatures(const Point* p, const TriangleIndices& a,
  * computed orientation (t1 - t0) x (t2 - t0) . (q - t0) is off by less than 1e-14 of
  * the product of the max-norms of its three vectors (each difference of two doubles is
  * rounded once, relative to itself), so a value beyond 1e-12 of that product has the
- * sign of the exact one; anything closer is left to the exact predicates. */
+ * sign of the exact one; anything closer is left to the exact predicates. So is
+ * anything the bound does not cover: an overflow (non-finite side) or an underflow
+ * (a margin below the smallest normal double, where rounding is no longer relative). */
 bool
 strictlyOnOneSide(const Eigen::Vector3d* const t[3], const Eigen::Vector3d* const q[3],
                   const bool on_t[3])
@@ -107,6 +109,8 @@ strictlyOnOneSide(const Eigen::Vector3d* const t[3], const Eigen::Vector3d* cons
     const double rx = (*q[k])[0] - p[0], ry = (*q[k])[1] - p[1], rz = (*q[k])[2] - p[2];
     const double side = nx * rx + ny * ry + nz * rz;
     const double margin = scale * max_abs(rx, ry, rz);
+    if (!std::isfinite(side) || !(margin >= std::numeric_limits<double>::min()))
+      return false;
     const int here = side > margin ? 1 : side < -margin ? -1 : 0;
     if (here == 0 || (sign != 0 && here != sign))
       return false;
@@ -292,6 +296,9 @@ trianglesIntersect(const std::vector<Eigen::Vector3d>& points, const TriangleInd
         std::max({b0, b1, b2}) < std::min({a0, a1, a2}))
       return false;
   }
+  for (int k = 0; k < 3; ++k)
+    if (!points[a[k]].allFinite() || !points[b[k]].allFinite())
+      return false; // no geometry to meet
   if (CGAL::collinear(toCgal(points[a[0]]), toCgal(points[a[1]]),
                       toCgal(points[a[2]])) ||
       CGAL::collinear(toCgal(points[b[0]]), toCgal(points[b[1]]), toCgal(points[b[2]])))
@@ -349,8 +356,10 @@ findSelfIntersections(const std::vector<Eigen::Vector3d>& points,
     const TriangleIndices& tri = triangles[t];
     const Eigen::Vector3d &a = points[tri[0]], &b = points[tri[1]], &c = points[tri[2]];
     // A triangle without area (repeated index or collinear corners) has no interior to
-    // intersect; analyzeTriangleMesh reports the combinatorial ones.
-    if (CGAL::collinear(toCgal(a), toCgal(b), toCgal(c)))
+    // intersect; analyzeTriangleMesh reports the combinatorial ones. One with a
+    // non-finite corner has no geometry at all.
+    if (!a.allFinite() || !b.allFinite() || !c.allFinite() ||
+        CGAL::collinear(toCgal(a), toCgal(b), toCgal(c)))
       continue;
     boxes.push_back({a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c), t});
   }

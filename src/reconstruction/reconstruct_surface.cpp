@@ -180,12 +180,15 @@ restoreInputPositions(const VoronoiCocone& voronoi,
       detail::restoreInputPositions(voronoi.centeredInputPoints(), output);
   report.restore_removed_triangles = repair.removed_triangles;
   report.restore_filled_triangles = repair.filled_triangles;
-  report.timings.restore =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  PCL_DEBUG("[pcl::cocone::reconstructSurface] back at the input positions: %.3f s\n",
-            report.timings.restore);
+  // Timed to the end of the repair's bookkeeping (loops and unused samples too).
+  const auto stop = [&] {
+    report.timings.restore =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    PCL_DEBUG("[pcl::cocone::reconstructSurface] back at the input positions: %.3f s\n",
+              report.timings.restore);
+  };
   if (repair.removed_triangles == 0)
-    return;
+    return stop();
   const MeshTopology topology = analyzeTriangleMesh(output);
   PCL_DEBUG("[pcl::cocone::reconstructSurface] back at the input positions: %zu "
             "triangles removed (crossing or pinched), %zu filled in again; %zu "
@@ -204,6 +207,7 @@ restoreInputPositions(const VoronoiCocone& voronoi,
   for (SampleIndex v = 0; v < voronoi.size(); ++v)
     if (!used[v])
       report.unused_samples.push_back(v);
+  stop();
 }
 
 } // namespace

@@ -25,7 +25,7 @@ namespace cocone {
  * \param[in] b second triangle, as three indices into \a points
  * \return true when \a a and \a b intersect beyond their shared vertices; false
  *         otherwise, and always when either triangle has no area (a repeated index or
- *         collinear corners)
+ *         collinear corners) or a non-finite corner
  * \throws std::out_of_range for an index outside \a points */
 PCL_COCONE_EXPORT bool
 trianglesIntersect(const std::vector<Eigen::Vector3d>& points, const TriangleIndices& a,
@@ -46,8 +46,8 @@ segmentCrossesTriangle(const std::vector<Eigen::Vector3d>& points, std::uint32_t
                        std::uint32_t b, const TriangleIndices& t);
 
 /** \brief The pairs of triangles of a mesh that intersect (see trianglesIntersect).
- * Triangles without area (a repeated index or collinear corners) are skipped.
- * Bounding-box filtered: a uniform grid for a mesh of triangles alike in size (a few box
+ * Triangles without area (a repeated index or collinear corners) are skipped, and so
+ * are triangles with a non-finite corner. Bounding-box filtered: a uniform grid for a mesh of triangles alike in size (a few box
  * tests per triangle), CGAL's segment tree otherwise (O(T log^3 T) for any mesh).
  * \param[in] points the vertex coordinates (any unit)
  * \param[in] triangles the mesh, as index triples into \a points
