@@ -759,7 +759,7 @@ runReconstructionSection(Context& context)
         r.input->shape->name != "torus")
       continue;
     const Measurement* ours = r.find(kOurs);
-    if (!ours)
+    if (!ours || !r.delaunay.ok)
       continue;
     const double factor = ours->seconds / r.delaunay.seconds;
     context.setTarget(

@@ -436,6 +436,11 @@ TEST(Tiles, BadMessagesFromOtherProcessesFailWithAReason)
   EXPECT_EQ(failing_twice.compute(with_nan), Status::non_finite_input);
   EXPECT_NE(failing_twice.errorMessage().find("non-finite"), std::string::npos)
       << failing_twice.errorMessage();
+  // The same for a root that fails while it builds its tiles (here: cancelled).
+  VoronoiCocone cancelled_root(f);
+  EXPECT_EQ(cancelled_root.compute(torus.points, [](double) { return false; }),
+            Status::internal_error);
+  EXPECT_EQ(cancelled_root.errorMessage(), "cancelled");
 
   // A process with an invalid rank.
   VoronoiParameters lost_parameters;

@@ -38,7 +38,8 @@ public:
   {
     return jobs_;
   }
-  /** Job R > 0: writes \a message (atomically: a temporary file renamed). Job 0: reads
+  /** Job R > 0: writes \a message (atomically: a temporary file renamed). Job 0: when
+   * \a message is not empty, job 0 has failed and nothing is read; otherwise reads
    * every other job's file, waiting for a missing one as set; throws
    * std::runtime_error naming the first file that is missing (after the wait),
    * unreadable or made from another input or other options. */

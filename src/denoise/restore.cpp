@@ -172,11 +172,12 @@ removePinches(std::vector<TriangleIndices>& triangles,
 }
 
 /** Removes the components of \a triangles (joined through edges) of at most
- * kMaxRestoreScrap triangles whose vertices were all \a repaired: scraps the repair
- * cut off, such as a lone triangle whose neighbours crossed others and whose own loop
- * no fill can close (its least-area fill is itself). A small piece the mesher made on
- * its own keeps some vertex the repair did not touch, and stays. Returns how many
- * triangles were removed. */
+ * kMaxRestoreScrap triangles whose boundary vertices were all \a repaired (and at
+ * least one vertex): scraps the repair cut off, such as a lone triangle whose
+ * neighbours crossed others and whose own loop no fill can close (its least-area fill
+ * is itself), or a small fan around an untouched vertex. A small piece the mesher made
+ * on its own keeps some boundary vertex the repair did not touch, and stays. Returns
+ * how many triangles were removed. */
 std::size_t
 removeRepairScraps(std::vector<TriangleIndices>& triangles,
                    const std::vector<std::uint8_t>& repaired)
@@ -199,19 +200,32 @@ removeRepairScraps(std::vector<TriangleIndices>& triangles,
   for (std::size_t i = 1; i < sides.size(); ++i)
     if (sides[i].first == sides[i - 1].first)
       parent[root(sides[i].second)] = root(sides[i - 1].second);
+  // A side met once is on the boundary of its piece.
+  std::vector<std::uint8_t> boundary_side(sides.size(), 0);
+  for (std::size_t i = 0; i < sides.size(); ++i)
+    boundary_side[i] = (i == 0 || sides[i].first != sides[i - 1].first) &&
+                       (i + 1 == sides.size() || sides[i].first != sides[i + 1].first);
   std::vector<std::uint32_t> size(triangles.size(), 0);
-  std::vector<std::uint8_t> all_repaired(triangles.size(), 1);
+  std::vector<std::uint8_t> rim_repaired(triangles.size(), 1),
+      touched(triangles.size(), 0);
   for (std::uint32_t t = 0; t < triangles.size(); ++t) {
     const std::uint32_t r = root(t);
     ++size[r];
     for (const std::uint32_t v : triangles[t])
-      if (!repaired[v])
-        all_repaired[r] = 0;
+      touched[r] |= repaired[v];
+  }
+  for (std::size_t i = 0; i < sides.size(); ++i) {
+    if (!boundary_side[i])
+      continue;
+    const std::uint32_t a = static_cast<std::uint32_t>(sides[i].first >> 32);
+    const std::uint32_t b = static_cast<std::uint32_t>(sides[i].first);
+    if (!repaired[a] || !repaired[b])
+      rim_repaired[root(sides[i].second)] = 0;
   }
   std::size_t kept = 0;
   for (std::uint32_t t = 0; t < triangles.size(); ++t) {
     const std::uint32_t r = root(t);
-    if (size[r] <= kMaxRestoreScrap && all_repaired[r])
+    if (size[r] <= kMaxRestoreScrap && rim_repaired[r] && touched[r])
       continue;
     triangles[kept++] = triangles[t];
   }
@@ -253,12 +267,13 @@ restoreInputPositions(const std::vector<Eigen::Vector3d>& points,
     repair.removed_triangles += removePinches(triangles, touched);
     for (std::size_t v = 0; v < points.size(); ++v)
       repaired[v] |= touched[v];
+    // Before the fills: a scrap inside a hole would block its fill.
+    repair.removed_triangles += removeRepairScraps(triangles, repaired);
     if (round == 2)
       break;
     repair.filled_triangles += fillHoles(points, touched, triangles);
     pairs = findSelfIntersections(points, triangles);
   }
-  repair.removed_triangles += removeRepairScraps(triangles, repaired);
   return repair;
 }
 

@@ -28,8 +28,9 @@ constexpr std::size_t kMaxRestoreScrap = 4;
 /** What restoreInputPositions did. */
 struct RestoreRepair
 {
-  std::size_t removed_triangles = 0; ///< triangles that crossed another, or pinched
-  std::size_t filled_triangles = 0;  ///< triangles added in their holes
+  /// triangles that crossed another, pinched, or were cut off by the repair
+  std::size_t removed_triangles = 0;
+  std::size_t filled_triangles = 0; ///< triangles added in their holes
 };
 
 /** Makes \a triangles, a mesh chosen on smoothed positions, free of self-intersection
@@ -39,9 +40,9 @@ struct RestoreRepair
  * boundary loop through a vertex of a removed triangle, of at most kMaxRestoreLoop
  * vertices) is filled with the triangulation of least area that crosses no triangle of
  * the mesh (the mesher's fill). Two rounds remove and fill; a third removes what still
- * crosses and leaves its hole open, so that no crossing is left. Last, pieces of at
- * most kMaxRestoreScrap triangles whose every vertex the repair touched are removed:
- * the repair cut them off. Deterministic. */
+ * crosses and leaves its hole open, so that no crossing is left. In each round, before
+ * the fills, pieces of at most kMaxRestoreScrap triangles whose boundary the repair
+ * touched all round are removed: the repair cut them off. Deterministic. */
 RestoreRepair restoreInputPositions(const std::vector<Eigen::Vector3d>& points,
                                     std::vector<TriangleIndices>& triangles);
 

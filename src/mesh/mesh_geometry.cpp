@@ -102,6 +102,8 @@ strictlyOnOneSide(const Eigen::Vector3d* const t[3], const Eigen::Vector3d* cons
   const double nx = e1y * e2z - e1z * e2y, ny = e1z * e2x - e1x * e2z,
                nz = e1x * e2y - e1y * e2x;
   const double scale = 1e-12 * max_abs(e1x, e1y, e1z) * max_abs(e2x, e2y, e2z);
+  if (!(scale >= std::numeric_limits<double>::min()))
+    return false; // tiny edges: the normal may be subnormal, its error not relative
   int sign = 0;
   for (int k = 0; k < 3; ++k) {
     if (on_t[k])

@@ -190,12 +190,12 @@ restoreInputPositions(const VoronoiCocone& voronoi,
   if (repair.removed_triangles == 0)
     return stop();
   const MeshTopology topology = analyzeTriangleMesh(output);
-  PCL_DEBUG("[pcl::cocone::reconstructSurface] back at the input positions: %zu "
-            "triangles removed (crossing or pinched), %zu filled in again; %zu "
-            "non-manifold edges, %zu non-manifold vertices, %zu duplicates\n",
-            repair.removed_triangles, repair.filled_triangles,
-            topology.non_manifold_edges, topology.non_manifold_vertices,
-            topology.duplicate_triangles);
+  PCL_DEBUG(
+      "[pcl::cocone::reconstructSurface] back at the input positions: %zu "
+      "triangles removed (crossing, pinched or cut off), %zu filled in again; %zu "
+      "non-manifold edges, %zu non-manifold vertices, %zu duplicates\n",
+      repair.removed_triangles, repair.filled_triangles, topology.non_manifold_edges,
+      topology.non_manifold_vertices, topology.duplicate_triangles);
   report.open_loops.clear();
   for (const std::vector<std::uint32_t>& loop : topology.boundary_loops)
     report.open_loops.emplace_back(loop.begin(), loop.end());

@@ -51,7 +51,8 @@ struct ReconstructionStatistics
   std::size_t crossing_triangles = 0;
   /** When the diagram was built on a smoothed copy of the samples (denoising, see
    * docs/noise.md): triangles removed because they cross another one at the input
-   * positions, and triangles added to fill their holes again. 0 otherwise. */
+   * positions (with the fans this pinches and the small pieces it cuts off), and
+   * triangles added to fill their holes again. 0 otherwise. */
   std::size_t restore_removed_triangles = 0;
   std::size_t restore_filled_triangles = 0; ///< see restore_removed_triangles
   /** \brief Wall-clock seconds of each stage. */

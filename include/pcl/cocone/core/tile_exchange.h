@@ -42,7 +42,8 @@ public:
   virtual unsigned size() const = 0;
 
   /** \brief Hands each process's tiles to the root: called exactly once per diagram by
-   * every process. May throw; the diagram then fails with Status::internal_error.
+   * every process. May throw; the diagram then fails with Status::internal_error, or
+   * with this process's own failure when it had failed before the call.
    * \param[in] message this process's tiles; it can exceed 2 GiB. On the root it is
    *            empty, unless the root has failed: then it holds the failure, the root
    *            will not read the others' messages, and an exchange that would wait for
