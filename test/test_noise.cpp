@@ -182,6 +182,22 @@ TEST(NoisyReconstruction, RestoreRemovesCrossingsAndFillsTheirHoles)
   EXPECT_GE(topology.boundary_loops.size(), 1u);
 }
 
+/** \a cloud reconstructed by \a cocone at its settings, as index triples. */
+std::vector<TriangleIndices>
+reconstructTriangles(pcl::CoconeReconstruction<pcl::PointXYZ>& cocone,
+                     const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud)
+{
+  cocone.setInputCloud(cloud);
+  std::vector<pcl::Vertices> polygons;
+  cocone.reconstruct(polygons);
+  std::vector<TriangleIndices> triangles;
+  for (const pcl::Vertices& polygon : polygons)
+    triangles.push_back({static_cast<std::uint32_t>(polygon.vertices[0]),
+                         static_cast<std::uint32_t>(polygon.vertices[1]),
+                         static_cast<std::uint32_t>(polygon.vertices[2])});
+  return triangles;
+}
+
 // The repair back at the input positions can cut a lone triangle off the surface: on
 // this cube (the benchmark's noisy-cube-100k-0.5) the three neighbours of a triangle at
 // a crease crossed others and went, and its own loop, which no fill closes (its fill
@@ -193,14 +209,7 @@ TEST(NoisyReconstruction, RepairLeavesNoScraps)
       withGaussianNoise(sampleRandom(Shape::cube, 100000, 1), 0.5);
   const auto cloud = toCloud(cube.points);
   pcl::CoconeReconstruction<pcl::PointXYZ> cocone;
-  cocone.setInputCloud(cloud);
-  std::vector<pcl::Vertices> polygons;
-  cocone.reconstruct(polygons);
-  std::vector<TriangleIndices> triangles;
-  for (const pcl::Vertices& polygon : polygons)
-    triangles.push_back({static_cast<std::uint32_t>(polygon.vertices[0]),
-                         static_cast<std::uint32_t>(polygon.vertices[1]),
-                         static_cast<std::uint32_t>(polygon.vertices[2])});
+  const std::vector<TriangleIndices> triangles = reconstructTriangles(cocone, cloud);
   const MeshTopology topology = expectValidSurface(toPoints(*cloud), triangles, "cube");
   EXPECT_GT(cocone.getReport().restore_removed_triangles, 0u); // the repair ran
   EXPECT_TRUE(topology.isClosed());
@@ -237,14 +246,7 @@ TEST_P(NoisyShapes, ExactTopologyThroughTheSamples)
   const SampledShape shape = withGaussianNoise(c.generate(c.samples, 11), c.sigma);
   const auto cloud = toCloud(shape.points);
   pcl::CoconeReconstruction<pcl::PointXYZ> cocone;
-  cocone.setInputCloud(cloud);
-  std::vector<pcl::Vertices> polygons;
-  cocone.reconstruct(polygons);
-  std::vector<TriangleIndices> triangles;
-  for (const pcl::Vertices& polygon : polygons)
-    triangles.push_back({static_cast<std::uint32_t>(polygon.vertices[0]),
-                         static_cast<std::uint32_t>(polygon.vertices[1]),
-                         static_cast<std::uint32_t>(polygon.vertices[2])});
+  const std::vector<TriangleIndices> triangles = reconstructTriangles(cocone, cloud);
   const std::string label = shape.name + " sigma " + std::to_string(c.sigma);
   // The vertices are the cloud's own points (as floats, as the class reads them).
   const Points points = toPoints(*cloud);
