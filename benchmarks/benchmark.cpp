@@ -276,8 +276,9 @@ main(int argc, char** argv)
     else if (arg == "--random") {
       random_sizes_given = true;
       options.random_sizes.clear(); // the last --random counts
+      // A trailing comma gets a last empty item (getline would drop it).
       const std::string text = value();
-      std::stringstream list(text);
+      std::stringstream list(text + (text.empty() || text.back() != ',' ? "" : ","));
       std::string item;
       while (text != "none" && std::getline(list, item, ',')) {
         char* end = nullptr;

@@ -233,8 +233,8 @@ forEachOverlappingPair(const std::vector<TriangleBox>& boxes, Report&& report)
         std::min(static_cast<std::uint64_t>(c.y()), std::uint64_t(kMaxCellsPerAxis)),
         std::min(static_cast<std::uint64_t>(c.z()), std::uint64_t(kMaxCellsPerAxis)));
   };
-  const auto keyOf = [](const Eigen::Array<std::uint64_t, 3, 1>& c) {
-    return (c.x() << 42) | (c.y() << 21) | c.z();
+  const auto keyOf = [](std::uint64_t x, std::uint64_t y, std::uint64_t z) {
+    return (x << 42) | (y << 21) | z;
   };
   // Budgets: 8 cells per box on average, and 128 box tests per box (about 30 on an
   // even mesh); beyond either, the grid is no better than the segment tree.
@@ -250,8 +250,7 @@ forEachOverlappingPair(const std::vector<TriangleBox>& boxes, Report&& report)
     for (std::uint64_t x = low.x(); x <= high.x(); ++x)
       for (std::uint64_t y = low.y(); y <= high.y(); ++y)
         for (std::uint64_t z = low.z(); z <= high.z(); ++z)
-          entries.emplace_back((x << 42) | (y << 21) | z,
-                               static_cast<std::uint32_t>(i));
+          entries.emplace_back(keyOf(x, y, z), static_cast<std::uint32_t>(i));
   }
   std::sort(entries.begin(), entries.end());
   std::size_t tests = 0;
@@ -270,7 +269,11 @@ forEachOverlappingPair(const std::vector<TriangleBox>& boxes, Report&& report)
       for (std::size_t j = i + 1; j < end; ++j) {
         const TriangleBox& a = boxes[entries[i].second];
         const TriangleBox& b = boxes[entries[j].second];
-        if (a.overlaps(b) && keyOf(cellOf(a.lo.cwiseMax(b.lo))) == entries[begin].first)
+        if (!a.overlaps(b))
+          continue;
+        // Once per pair: in the cell that holds the low corner of the overlap.
+        const auto first = cellOf(a.lo.cwiseMax(b.lo));
+        if (keyOf(first.x(), first.y(), first.z()) == entries[begin].first)
           report(a.triangle, b.triangle);
       }
   }
