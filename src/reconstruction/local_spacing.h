@@ -48,11 +48,31 @@ constexpr double kTrueRimFlagShare = 0.2;
  * 2; 3 leaves the lids over small holes of real scans; see the source). */
 constexpr std::size_t kTrueRimDistinctFlags = 2;
 
+/** A flagged sample is at a sharp edge when the unflagged samples near it have pole
+ * vectors (signs aside) more than this far apart (cosine of 60 degrees) ... */
+constexpr double kCreaseCosine = 0.5;
+/** ... and every one of them is within this of one of those two (cosine of 25
+ * degrees): the two faces are each nearly flat at this scale ... */
+constexpr double kCreaseFaceCosine = 0.906;
+/** ... near it meaning within this many local spacings of its Delaunay neighbours, and
+ * at most two Delaunay edges away. */
+constexpr double kCreaseReach = 3;
+
+/** BOUNDARY's flags \a boundary, less those at sharp edges (kCreaseCosine, with the
+ * local spacings \a spacing of measureLocalSpacing): the flags
+ * that HoleRule takes as evidence of a true boundary. A sharp edge is undersampled at
+ * any density (the paper's motivation for BOUNDARY), so its flags say nothing about a
+ * hole across it; see the source. In parallel, with the threads of \a voronoi. */
+std::vector<std::uint8_t>
+rimEvidence(const VoronoiCocone& voronoi, const std::vector<std::uint8_t>& boundary,
+            const std::vector<double>& spacing);
+
 /** The decision between a true boundary, which stays open, and an undersampling hole,
  * which the mesher closes (see the source for the rule and the evidence behind each
  * constant): a hole or patch is a true boundary when
  *  (a) it is larger than true_boundary_ratio local spacings (isTrueBoundary above),
- *  (b) at least kTrueRimFlagShare of its rim samples are BOUNDARY's flags, and
+ *  (b) at least kTrueRimFlagShare of its rim samples are BOUNDARY's flags (less those
+ *      at sharp edges: rimEvidence), and
  *  (c) those flags are at least kTrueRimDistinctFlags distinct places.
  * The same rule decides wherever a hole is judged: lids, stitching, polygon fills. */
 class HoleRule

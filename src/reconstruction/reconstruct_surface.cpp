@@ -105,9 +105,11 @@ runStages(const VoronoiCocone& voronoi, const ReconstructionParameters& paramete
   const std::vector<std::uint8_t> no_flags(sparse ? voronoi.size() : 0, 0);
   const std::vector<std::uint8_t>& boundary =
       sparse ? no_flags : report.boundary_samples;
-  const detail::HoleRule rule(mesh.points(), boundary, ratio);
-
   const std::vector<double> spacing = detail::measureLocalSpacing(voronoi);
+  const std::vector<std::uint8_t> rim_evidence =
+      sparse ? no_flags : detail::rimEvidence(voronoi, boundary, spacing);
+  const detail::HoleRule rule(mesh.points(), rim_evidence, ratio);
+
   report.candidate_triangles = detail::collectCandidates(voronoi, boundary, mesh);
   if (sparse)
     report.candidate_triangles -=
