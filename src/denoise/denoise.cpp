@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -38,8 +39,8 @@ nearestNeighbours(const std::vector<Eigen::Vector3d>& points,
   for (std::size_t i = 0; i < points.size(); ++i)
     for (int axis = 0; axis < 3; ++axis)
       coordinates[3 * i + axis] = static_cast<float>(points[i][axis] - centre[axis]);
-  // FLANN's own single kd-tree, searched one query at a time into a result set of the
-  // thread's. PCL's KdTreeFLANN wraps the same tree, but each of its searches opens an
+  // FLANN's own single kd-tree (findNeighbors is const: threads may search it at once),
+  // searched one query at a time into a result set of the task's. PCL's KdTreeFLANN wraps the same tree, but each of its searches opens an
   // OpenMP region and converts its lists, which took as long as the search itself.
   const flann::Matrix<float> dataset(coordinates.data(), points.size(), 3);
   flann::KDTreeSingleIndex<flann::L2_Simple<float>> tree(
@@ -60,7 +61,9 @@ nearestNeighbours(const std::vector<Eigen::Vector3d>& points,
             const std::size_t count = std::min<std::size_t>(found.size(), k);
             found.copy(ids.data(), distances.data(), count, true);
             // Nearest first, equal distances in the order the search met them, which
-            // depends on the query alone: identical queries get identical lists.
+            // depends on the query and the tree (built from the samples in the
+            // classes' spatial order), not on the thread: identical queries get
+            // identical lists.
             for (unsigned j = 0; j < k; ++j)
               neighbours[q * k + j] =
                   static_cast<std::uint32_t>(j < count ? ids[j] : queries[q]);
@@ -117,6 +120,7 @@ LocalQuadric
 fitQuadric(const std::vector<Eigen::Vector3d>& positions, const std::uint32_t* ids,
            unsigned k, Residual residual)
 {
+  assert(k > 6 && k <= kMaxFitPoints); // 6 coefficients; fixed-size buffers below
   LocalQuadric fit;
   fit.points = k;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();

@@ -100,12 +100,17 @@ namespace {
 
 /** Whether the unit \a normals (signs aside) fall into two tight groups far apart, as
  * the two faces of a sharp edge do: the two most different are more than
- * acos(kCreaseCosine) apart, and every normal lies within acos(kCreaseFaceCosine) of
- * one of those two. A coarse sample of a curved surface turns as much over a few
- * spacings, but through every direction in between. */
+ * acos(kCreaseCosine) apart, every normal lies within acos(kCreaseFaceCosine) of
+ * one of those two, and each group holds kCreaseFaceNormals of them at least, so that
+ * one stray pole vector beside a flat rim is not a face. A coarse sample of a curved
+ * surface turns as much over a few spacings, but through every direction in between.
+ * At a corner of three faces the third group fails the test: corner flags still count
+ * as a rim's. */
 bool
 splitsInTwoFaces(const std::vector<Eigen::Vector3d>& normals)
 {
+  if (normals.size() < 2 * kCreaseFaceNormals)
+    return false;
   double least = 1;
   std::size_t first = 0, second = 0;
   for (std::size_t a = 0; a < normals.size(); ++a)
@@ -119,10 +124,15 @@ splitsInTwoFaces(const std::vector<Eigen::Vector3d>& normals)
     }
   if (!(least < kCreaseCosine))
     return false;
-  return std::all_of(normals.begin(), normals.end(), [&](const Eigen::Vector3d& n) {
-    return std::max(std::abs(n.dot(normals[first])),
-                    std::abs(n.dot(normals[second]))) >= kCreaseFaceCosine;
-  });
+  std::size_t in_first = 0, in_second = 0;
+  for (const Eigen::Vector3d& n : normals) {
+    const double to_first = std::abs(n.dot(normals[first]));
+    const double to_second = std::abs(n.dot(normals[second]));
+    if (std::max(to_first, to_second) < kCreaseFaceCosine)
+      return false;
+    ++(to_first >= to_second ? in_first : in_second);
+  }
+  return in_first >= kCreaseFaceNormals && in_second >= kCreaseFaceNormals;
 }
 
 } // namespace

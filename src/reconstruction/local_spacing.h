@@ -54,8 +54,10 @@ constexpr double kCreaseCosine = 0.5;
 /** ... and every one of them is within this of one of those two (cosine of 25
  * degrees): the two faces are each nearly flat at this scale ... */
 constexpr double kCreaseFaceCosine = 0.906;
-/** ... near it meaning within this many local spacings of its Delaunay neighbours, and
- * at most two Delaunay edges away. */
+/** ... each of the two groups holding at least this many of them ... */
+constexpr std::size_t kCreaseFaceNormals = 2;
+/** ... near it meaning at most two Delaunay edges away and within this many local
+ * spacings of it, the spacing being the median over its Delaunay neighbours'. */
 constexpr double kCreaseReach = 3;
 
 /** BOUNDARY's flags \a boundary, less those at sharp edges (kCreaseCosine, with the
