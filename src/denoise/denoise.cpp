@@ -40,8 +40,9 @@ nearestNeighbours(const std::vector<Eigen::Vector3d>& points,
     for (int axis = 0; axis < 3; ++axis)
       coordinates[3 * i + axis] = static_cast<float>(points[i][axis] - centre[axis]);
   // FLANN's own single kd-tree (findNeighbors is const: threads may search it at once),
-  // searched one query at a time into a result set of the task's. PCL's KdTreeFLANN wraps the same tree, but each of its searches opens an
-  // OpenMP region and converts its lists, which took as long as the search itself.
+  // searched one query at a time into a result set of the task's. PCL's KdTreeFLANN
+  // wraps the same tree, but each of its searches opens an OpenMP region and converts
+  // its lists, which took as long as the search itself.
   const flann::Matrix<float> dataset(coordinates.data(), points.size(), 3);
   flann::KDTreeSingleIndex<flann::L2_Simple<float>> tree(
       dataset, flann::KDTreeSingleIndexParams(15));
@@ -170,8 +171,9 @@ fitQuadric(const std::vector<Eigen::Vector3d>& positions, const std::uint32_t* i
   // them directly, in named scalars for the same reason as the covariance, replaced
   // the k x 6 design matrix and Eigen's product with it (which perf put at a fifth of
   // the smoothing).
-  double m00 = 0, m10 = 0, m01 = 0, m20 = 0, m11 = 0, m02 = 0, m30 = 0, m21 = 0,
-         m12 = 0, m03 = 0, m40 = 0, m31 = 0, m22 = 0, m13 = 0, m04 = 0;
+  const double m00 = k; // the sum of s^0 t^0
+  double m10 = 0, m01 = 0, m20 = 0, m11 = 0, m02 = 0, m30 = 0, m21 = 0, m12 = 0,
+         m03 = 0, m40 = 0, m31 = 0, m22 = 0, m13 = 0, m04 = 0;
   double h00 = 0, h10 = 0, h01 = 0, h20 = 0, h11 = 0, h02 = 0;
   const double inverse_scale = 1 / fit.scale;
   for (unsigned j = 0; j < k; ++j) {
@@ -179,7 +181,6 @@ fitQuadric(const std::vector<Eigen::Vector3d>& positions, const std::uint32_t* i
     s[j] = a;
     t[j] = b;
     const double aa = a * a, ab = a * b, bb = b * b;
-    m00 += 1;
     m10 += a;
     m01 += b;
     m20 += aa;

@@ -153,10 +153,8 @@ rimEvidence(const VoronoiCocone& voronoi, const std::vector<std::uint8_t>& bound
           for (SampleIndex p = range.begin(); p != range.end(); ++p) {
             if (!boundary[p])
               continue;
-            // The samples within reach, two Delaunay edges away at most: the
-            // neighbours of a flag beside an edge are mostly flagged too.
-            // In local spacings of the neighbourhood, not of the sample: a sample of
-            // a close random pair has a spacing several times smaller.
+            // The samples within reach (in the neighbourhood's spacing, see above),
+            // two Delaunay edges away at most.
             voronoi.delaunayNeighbours(p, neighbours);
             const double reach = kCreaseReach * typicalSpacing(spacing, neighbours);
             const auto within = [&](SampleIndex q) {
