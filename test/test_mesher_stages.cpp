@@ -686,6 +686,34 @@ TEST(HoleRule, NeedsSizeFlaggedShareAndTwoPlaces)
   EXPECT_TRUE(rule.isTrueBoundary(area, perimeter, 1, rim));
 }
 
+// At the polygon fill, a loop of fewer than kSmallHoleEdges edges needs flags at
+// kSmallHoleDistinctFlags places: a large random gap flags 2 places of its own rim.
+TEST(HoleRule, SmallHolesAtThePolygonFillNeedThreePlaces)
+{
+  Points points;
+  for (int k = 0; k < 12; ++k)
+    points.emplace_back(k, 0, 0);
+  std::vector<SampleIndex> loop(9);
+  for (SampleIndex v = 0; v < 9; ++v)
+    loop[v] = v;
+  const double area = 3.14159 * 16, perimeter = 2 * 3.14159 * 4; // 4 spacings
+  ASSERT_LT(loop.size(), pcl::cocone::detail::kSmallHoleEdges);
+
+  std::vector<std::uint8_t> flags(points.size(), 0);
+  flags[0] = flags[4] = 1; // 2 of 9 flagged, at 2 places
+  const HoleRule rule(points, flags, 2);
+  EXPECT_TRUE(rule.isTrueBoundary(area, perimeter, 1, loop)); // a lid or a walk
+  EXPECT_FALSE(rule.isTrueBoundaryAtPolygonFill(area, perimeter, 1, loop));
+  EXPECT_FALSE(rule.isTrueBoundaryAtPolygonFill(area, perimeter, 3, loop)); // too small
+
+  loop.push_back(9); // 10 edges: 2 places keep it open, as everywhere else
+  EXPECT_TRUE(rule.isTrueBoundaryAtPolygonFill(area, perimeter, 1, loop));
+  loop.pop_back();
+
+  flags[7] = 1; // 3 places
+  EXPECT_TRUE(rule.isTrueBoundaryAtPolygonFill(area, perimeter, 1, loop));
+}
+
 // --- pruning --------------------------------------------------------------------
 
 /** The octahedron (triangles 0 to 7, group 0) with triangles added on its edge +x +z

@@ -48,11 +48,17 @@ PolygonFiller::fill(std::vector<SampleIndex>& loop, double spacing)
     double fill_area = 0;
     for (const TriangleIndices& t : fill)
       fill_area += 0.5 * mesh_.orientedNormal(t).norm();
-    PCL_VERBOSE(
-        "[pcl::cocone::reconstructSurface] hole of %zu edges: polygon fill of size "
-        "%.2f local spacings\n",
-        loop.size(), 2 * fill_area / perimeter / spacing);
-    if (rule_.isTrueBoundary(fill_area, perimeter, spacing, loop))
+    const bool true_boundary =
+        rule_.isTrueBoundaryAtPolygonFill(fill_area, perimeter, spacing, loop);
+    if (pcl::console::isVerbosityLevelEnabled(pcl::console::L_VERBOSE)) {
+      const RimFlags flags = rule_.rimFlags(loop, spacing);
+      PCL_VERBOSE(
+          "[pcl::cocone::reconstructSurface] hole of %zu edges: polygon fill of size "
+          "%.2f local spacings, %zu of %zu rim samples flagged, %zu distinct: %s\n",
+          loop.size(), 2 * fill_area / perimeter / spacing, flags.flagged, flags.rim,
+          flags.distinct, true_boundary ? "true boundary" : "undersampling hole");
+    }
+    if (true_boundary)
       break;
     added.clear();
     for (const TriangleIndices& t : fill) {

@@ -44,9 +44,16 @@ constexpr double kDistinctFlagDistance = 0.25;
  * share measured on the true rims of the shared scans is 0.30; most sampling gaps have
  * no flag at all)... */
 constexpr double kTrueRimFlagShare = 0.2;
-/** ... at this many distinct places at least (no gap of a smooth random shape showed
- * 2; 3 leaves the lids over small holes of real scans; see the source). */
+/** ... at this many distinct places at least (no gap of a smooth random shape at 100k
+ * showed 2; 3 leaves the lids over small holes of real scans; see the source). */
 constexpr std::size_t kTrueRimDistinctFlags = 2;
+
+/** A hole of fewer than this many edges that the polygon fill can close (the last
+ * stage of stitching) ... */
+constexpr std::size_t kSmallHoleEdges = 10;
+/** ... stays open only with flags at this many distinct places at least: at 4M random
+ * samples a gap can flag 2 places of its own rim (see the source). */
+constexpr std::size_t kSmallHoleDistinctFlags = 3;
 
 /** A flagged sample is at a sharp edge when the unflagged samples near it have pole
  * vectors (signs aside) more than this far apart (cosine of 60 degrees) ... */
@@ -75,7 +82,8 @@ rimEvidence(const VoronoiCocone& voronoi, const std::vector<std::uint8_t>& bound
  *  (a) it is larger than true_boundary_ratio local spacings (isTrueBoundary above),
  *  (b) at least kTrueRimFlagShare of its rim samples are BOUNDARY's flags (less those
  *      at sharp edges: rimEvidence), and
- *  (c) those flags are at least kTrueRimDistinctFlags distinct places.
+ *  (c) those flags are at least kTrueRimDistinctFlags distinct places, or
+ *      kSmallHoleDistinctFlags for a small hole at the polygon fill.
  * The same rule decides wherever a hole is judged: lids, stitching, polygon fills. */
 class HoleRule
 {
@@ -95,6 +103,12 @@ public:
   bool isTrueBoundary(double area, double perimeter, double spacing,
                       const std::vector<SampleIndex>& rim) const;
 
+  /** The same for a hole that the polygon fill would close, \a loop being its loop:
+   * isTrueBoundary, and a loop of fewer than kSmallHoleEdges edges needs flags at
+   * kSmallHoleDistinctFlags places. */
+  bool isTrueBoundaryAtPolygonFill(double area, double perimeter, double spacing,
+                                   const std::vector<SampleIndex>& loop) const;
+
   double
   sizeRatio() const
   {
@@ -102,6 +116,10 @@ public:
   }
 
 private:
+  /** isTrueBoundary, with flags at \a places distinct places at least. */
+  bool judge(double area, double perimeter, double spacing,
+             const std::vector<SampleIndex>& rim, std::size_t places) const;
+
   const std::vector<Eigen::Vector3d>& points_;
   const std::vector<std::uint8_t>& boundary_;
   const double ratio_;

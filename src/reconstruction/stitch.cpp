@@ -174,6 +174,8 @@ Stitcher::stitch(std::vector<std::vector<SampleIndex>>& loops)
     }
     mesh_.undo(added);
 
+    // A hole judged a true boundary here may still be closed by the polygon fill,
+    // whose rule is stricter on small holes (HoleRule::isTrueBoundaryAtPolygonFill).
     const PolygonFill fill = filler_.fill(loops[h], spacing);
     if (fill.closed) {
       ++stitched_holes_;
