@@ -197,8 +197,9 @@ struct ReconstructionParameters
   /** \brief A hole is a true boundary, and stays open, when its size (twice its area
    * over its perimeter: the radius of a round hole, half the width of a long one)
    * exceeds this many local sample spacings and BOUNDARY flags its rim (a fifth of the
-   * rim samples, at 2 places at least, flags at sharp edges aside: docs/topology.md);
-   * other holes are stitched.
+   * rim samples, at 2 places at least, 3 for a hole of fewer than 10 edges at the
+   * polygon fill, flags at sharp edges aside: docs/topology.md); other holes are
+   * stitched.
    * The same test removes candidate triangles that cover such a hole. In local spacings
    * (about 1.1 times sqrt(area / n) on evenly spread samples); default 2; valid range
    * [0.5, 1000] (kTrueBoundaryRatioRange). */
