@@ -495,11 +495,27 @@ TEST(MeshChecks, SelfIntersectionsAreThoseOfEveryPair)
     for (Eigen::Vector3d& p : torus)
       p += Eigen::Vector3d(jitter(random), jitter(random), jitter(random));
     const auto expected = everyIntersectingPair(torus, torus_triangles);
-    EXPECT_EQ(pcl::cocone::findSelfIntersections(torus, torus_triangles), expected)
-        << "noise " << noise;
+    for (const unsigned threads : {0u, 1u, 2u})
+      EXPECT_EQ(pcl::cocone::findSelfIntersections(torus, torus_triangles, threads),
+                expected)
+          << "noise " << noise << ", threads " << threads;
     if (noise >= 0.1)
       EXPECT_FALSE(expected.empty()) << "noise " << noise;
   }
+
+  // A mesh of 320k triangles, whose grid cells are tested in many chunks: the same
+  // pairs on one thread and on two (the pairs of every cell, each once).
+  std::normal_distribution<double> fine_jitter(0, 0.002);
+  Points fine_torus = torusPoints(400, 400);
+  for (Eigen::Vector3d& p : fine_torus)
+    p += Eigen::Vector3d(fine_jitter(random), fine_jitter(random), fine_jitter(random));
+  const Triangles fine_triangles = grid(400, 400, true, true);
+  const auto on_one = pcl::cocone::findSelfIntersections(fine_torus, fine_triangles, 1);
+  EXPECT_GT(on_one.size(), 100u);
+  EXPECT_EQ(pcl::cocone::findSelfIntersections(fine_torus, fine_triangles, 2), on_one);
+  for (std::size_t k = 0; k < on_one.size(); k += 37) // a sample of them, each alone
+    EXPECT_TRUE(pcl::cocone::trianglesIntersect(
+        fine_torus, fine_triangles[on_one[k].first], fine_triangles[on_one[k].second]));
 
   // Integer coordinates: boxes meet exactly on the cells' walls; every third quad is
   // repeated with its diagonal flipped, which overlaps it in its plane.

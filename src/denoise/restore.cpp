@@ -238,11 +238,11 @@ removeRepairScraps(std::vector<TriangleIndices>& triangles,
 
 RestoreRepair
 restoreInputPositions(const std::vector<Eigen::Vector3d>& points,
-                      std::vector<TriangleIndices>& triangles)
+                      std::vector<TriangleIndices>& triangles, unsigned threads)
 {
   RestoreRepair repair;
   std::vector<std::pair<std::size_t, std::size_t>> pairs =
-      findSelfIntersections(points, triangles);
+      findSelfIntersections(points, triangles, threads);
   if (pairs.empty())
     return repair;
   std::vector<std::uint8_t> repaired(points.size(), 0); // over all rounds
@@ -272,7 +272,7 @@ restoreInputPositions(const std::vector<Eigen::Vector3d>& points,
     if (round == 2)
       break;
     repair.filled_triangles += fillHoles(points, touched, triangles);
-    pairs = findSelfIntersections(points, triangles);
+    pairs = findSelfIntersections(points, triangles, threads);
   }
   return repair;
 }

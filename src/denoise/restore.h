@@ -42,9 +42,11 @@ struct RestoreRepair
  * the mesh (the mesher's fill). Two rounds remove and fill; a third removes what still
  * crosses and leaves its hole open, so that no crossing is left. In each round, before
  * the fills, pieces of at most kMaxRestoreScrap triangles whose boundary the repair
- * touched all round are removed: the repair cut them off. Deterministic. */
-RestoreRepair restoreInputPositions(const std::vector<Eigen::Vector3d>& points,
-                                    std::vector<TriangleIndices>& triangles);
+ * touched all round are removed: the repair cut them off. Deterministic: the same
+ * for any \a threads, the most threads the crossing checks use (0: every core). */
+RestoreRepair
+restoreInputPositions(const std::vector<Eigen::Vector3d>& points,
+                      std::vector<TriangleIndices>& triangles, unsigned threads);
 
 } // namespace detail
 } // namespace cocone

@@ -1,8 +1,15 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <pcl/cocone/core/mesh_geometry.h>
 
+#include "common/parallel.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <array>
@@ -190,10 +197,15 @@ struct TriangleBox
  * is 4 times faster than CGAL's box_self_intersection_d. Where the grid would not pay
  * (boxes spread over too many cells, or too many boxes in some cells, for instance a
  * few huge triangles over a dense mesh), CGAL's segment tree does the work instead:
- * its O(T log^3 T) bound holds for any mesh. */
+ * its O(T log^3 T) bound holds for any mesh.
+ *
+ * The grid's cells are tested on up to \a threads threads (0: every core), so
+ * \a report may be called from several threads at once; the segment tree calls it
+ * from one. */
 template <typename Report>
 void
-forEachOverlappingPair(const std::vector<TriangleBox>& boxes, Report&& report)
+forEachOverlappingPair(const std::vector<TriangleBox>& boxes, unsigned threads,
+                       Report&& report)
 {
   const auto withCgal = [&] {
     using Box = CGAL::Box_intersection_d::Box_with_info_d<
@@ -226,8 +238,11 @@ forEachOverlappingPair(const std::vector<TriangleBox>& boxes, Report&& report)
       std::max(2 * *median, (top - origin).maxCoeff() / kMaxCellsPerAxis);
   if (!(cell > 0) || !std::isfinite(cell))
     return withCgal();
+  // One multiplication per coordinate, the same for every box and every overlap, so
+  // that an overlap's cell is among the cells of both its boxes.
+  const double per_cell = 1 / cell;
   const auto cellOf = [&](const Eigen::Vector3d& x) {
-    const Eigen::Vector3d c = ((x - origin) / cell).array().floor();
+    const Eigen::Vector3d c = ((x - origin) * per_cell).array().floor();
     return Eigen::Array<std::uint64_t, 3, 1>(
         std::min(static_cast<std::uint64_t>(c.x()), std::uint64_t(kMaxCellsPerAxis)),
         std::min(static_cast<std::uint64_t>(c.y()), std::uint64_t(kMaxCellsPerAxis)),
@@ -252,7 +267,11 @@ forEachOverlappingPair(const std::vector<TriangleBox>& boxes, Report&& report)
         for (std::uint64_t z = low.z(); z <= high.z(); ++z)
           entries.emplace_back(keyOf(x, y, z), static_cast<std::uint32_t>(i));
   }
-  std::sort(entries.begin(), entries.end());
+  // (cell, box) pairs are distinct: any sort gives the one order.
+  detail::runInArena(threads,
+                     [&] { tbb::parallel_sort(entries.begin(), entries.end()); });
+  // Where each cell's boxes begin in entries, and the end.
+  std::vector<std::size_t> cell_begin;
   std::size_t tests = 0;
   for (std::size_t begin = 0, end = 0; begin < entries.size(); begin = end) {
     while (end < entries.size() && entries[end].first == entries[begin].first)
@@ -261,10 +280,11 @@ forEachOverlappingPair(const std::vector<TriangleBox>& boxes, Report&& report)
     tests += in_cell * (in_cell - 1) / 2;
     if (tests > max_tests)
       return withCgal(); // nothing reported yet: the pairs are all found there
+    cell_begin.push_back(begin);
   }
-  for (std::size_t begin = 0, end = 0; begin < entries.size(); begin = end) {
-    while (end < entries.size() && entries[end].first == entries[begin].first)
-      ++end;
+  cell_begin.push_back(entries.size());
+  const auto testCell = [&](std::size_t c) {
+    const std::size_t begin = cell_begin[c], end = cell_begin[c + 1];
     for (std::size_t i = begin; i < end; ++i)
       for (std::size_t j = i + 1; j < end; ++j) {
         const TriangleBox& a = boxes[entries[i].second];
@@ -276,7 +296,14 @@ forEachOverlappingPair(const std::vector<TriangleBox>& boxes, Report&& report)
         if (keyOf(first.x(), first.y(), first.z()) == entries[begin].first)
           report(a.triangle, b.triangle);
       }
-  }
+  };
+  detail::runInArena(threads, [&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cell_begin.size() - 1, 256),
+                      [&](const tbb::blocked_range<std::size_t>& cells) {
+                        for (std::size_t c = cells.begin(); c != cells.end(); ++c)
+                          testCell(c);
+                      });
+  });
 }
 
 } // namespace
@@ -347,7 +374,7 @@ segmentCrossesTriangle(const std::vector<Eigen::Vector3d>& points, std::uint32_t
 
 std::vector<std::pair<std::size_t, std::size_t>>
 findSelfIntersections(const std::vector<Eigen::Vector3d>& points,
-                      const std::vector<TriangleIndices>& triangles)
+                      const std::vector<TriangleIndices>& triangles, unsigned threads)
 {
   for (const TriangleIndices& t : triangles)
     for (const std::uint32_t v : t)
@@ -368,21 +395,25 @@ findSelfIntersections(const std::vector<Eigen::Vector3d>& points,
       continue;
     boxes.push_back({a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c), t});
   }
-  std::vector<std::pair<std::size_t, std::size_t>> pairs;
-  forEachOverlappingPair(boxes, [&](std::size_t a, std::size_t b) {
+  using Pairs = std::vector<std::pair<std::size_t, std::size_t>>;
+  tbb::enumerable_thread_specific<Pairs> found;
+  forEachOverlappingPair(boxes, threads, [&](std::size_t a, std::size_t b) {
     if (crossBeyondSharedFeatures(points, triangles[a], triangles[b]))
-      pairs.emplace_back(std::min(a, b), std::max(a, b));
+      found.local().emplace_back(std::min(a, b), std::max(a, b));
   });
-  // The pairs are met in an order of the boxes' choosing.
+  // The pairs are met in an order of the boxes' and the threads' choosing.
+  Pairs pairs;
+  for (const Pairs& some : found)
+    pairs.insert(pairs.end(), some.begin(), some.end());
   std::sort(pairs.begin(), pairs.end());
   return pairs;
 }
 
 std::size_t
 countSelfIntersections(const std::vector<Eigen::Vector3d>& points,
-                       const std::vector<TriangleIndices>& triangles)
+                       const std::vector<TriangleIndices>& triangles, unsigned threads)
 {
-  return findSelfIntersections(points, triangles).size();
+  return findSelfIntersections(points, triangles, threads).size();
 }
 
 } // namespace cocone

@@ -178,8 +178,8 @@ restoreInputPositions(const VoronoiCocone& voronoi,
                       ReconstructionReport& report)
 {
   const auto start = std::chrono::steady_clock::now();
-  const detail::RestoreRepair repair =
-      detail::restoreInputPositions(voronoi.centeredInputPoints(), output);
+  const detail::RestoreRepair repair = detail::restoreInputPositions(
+      voronoi.centeredInputPoints(), output, voronoi.getNumberOfThreads());
   report.restore_removed_triangles = repair.removed_triangles;
   report.restore_filled_triangles = repair.filled_triangles;
   // Timed to the end of the repair's bookkeeping (loops and unused samples too).

@@ -47,27 +47,31 @@ segmentCrossesTriangle(const std::vector<Eigen::Vector3d>& points, std::uint32_t
 
 /** \brief The pairs of triangles of a mesh that intersect (see trianglesIntersect).
  * Triangles without area (a repeated index or collinear corners) are skipped, and so
- * are triangles with a non-finite corner. Bounding-box filtered: a uniform grid for a mesh of triangles alike in size (a few box
- * tests per triangle), CGAL's segment tree otherwise (O(T log^3 T) for any mesh).
- * \param[in] points the vertex coordinates (any unit)
- * \param[in] triangles the mesh, as index triples into \a points
- * \return the intersecting pairs as positions in \a triangles, the smaller first,
- *         sorted; empty for a mesh without self-intersection
+ * are triangles with a non-finite corner. Bounding-box filtered: a uniform grid for a
+ * mesh of triangles alike in size (a few box tests per triangle), CGAL's segment tree
+ * otherwise (O(T log^3 T) for any mesh). \param[in] points the vertex coordinates (any
+ * unit) \param[in] triangles the mesh, as index triples into \a points \param[in]
+ * threads the most threads the grid's cells are tested on (0: every core); the pairs
+ * are the same for any count \return the intersecting pairs as positions in \a
+ * triangles, the smaller first, sorted; empty for a mesh without self-intersection
  * \throws std::out_of_range for an index outside \a points */
 PCL_COCONE_EXPORT std::vector<std::pair<std::size_t, std::size_t>>
 findSelfIntersections(const std::vector<Eigen::Vector3d>& points,
-                      const std::vector<TriangleIndices>& triangles);
+                      const std::vector<TriangleIndices>& triangles,
+                      unsigned threads = 0);
 
 /** \brief Counts the pairs of triangles of a mesh that intersect (see
  * trianglesIntersect). Triangles without area (a repeated index or collinear corners)
  * are skipped. Bounding-box filtered, as findSelfIntersections.
  * \param[in] points the vertex coordinates (any unit)
  * \param[in] triangles the mesh, as index triples into \a points
+ * \param[in] threads the most threads to use (0: every core)
  * \return the number of intersecting pairs; 0 for a mesh without self-intersection
  * \throws std::out_of_range for an index outside \a points */
 PCL_COCONE_EXPORT std::size_t
 countSelfIntersections(const std::vector<Eigen::Vector3d>& points,
-                       const std::vector<TriangleIndices>& triangles);
+                       const std::vector<TriangleIndices>& triangles,
+                       unsigned threads = 0);
 
 } // namespace cocone
 } // namespace pcl
