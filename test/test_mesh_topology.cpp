@@ -503,8 +503,24 @@ TEST(MeshChecks, SelfIntersectionsAreThoseOfEveryPair)
       EXPECT_FALSE(expected.empty()) << "noise " << noise;
   }
 
+  // A torus of 6400 triangles spans more grid cells than one chunk of the parallel
+  // loop (256 cells): on two threads the cells are split, and the pairs are still
+  // exactly those of every pair tested alone.
+  {
+    std::normal_distribution<double> jitter(0, 0.02);
+    Points torus = torusPoints(80, 40);
+    for (Eigen::Vector3d& p : torus)
+      p += Eigen::Vector3d(jitter(random), jitter(random), jitter(random));
+    const Triangles triangles = grid(80, 40, true, true);
+    const auto expected = everyIntersectingPair(torus, triangles);
+    EXPECT_FALSE(expected.empty());
+    for (const unsigned threads : {1u, 2u})
+      EXPECT_EQ(pcl::cocone::findSelfIntersections(torus, triangles, threads), expected)
+          << "threads " << threads;
+  }
+
   // A mesh of 320k triangles, whose grid cells are tested in many chunks: the same
-  // pairs on one thread and on two (the pairs of every cell, each once).
+  // pairs on one thread and on two, each pair once.
   std::normal_distribution<double> fine_jitter(0, 0.002);
   Points fine_torus = torusPoints(400, 400);
   for (Eigen::Vector3d& p : fine_torus)
@@ -513,6 +529,7 @@ TEST(MeshChecks, SelfIntersectionsAreThoseOfEveryPair)
   const auto on_one = pcl::cocone::findSelfIntersections(fine_torus, fine_triangles, 1);
   EXPECT_GT(on_one.size(), 100u);
   EXPECT_EQ(pcl::cocone::findSelfIntersections(fine_torus, fine_triangles, 2), on_one);
+  EXPECT_EQ(std::adjacent_find(on_one.begin(), on_one.end()), on_one.end());
   for (std::size_t k = 0; k < on_one.size(); k += 37) // a sample of them, each alone
     EXPECT_TRUE(pcl::cocone::trianglesIntersect(
         fine_torus, fine_triangles[on_one[k].first], fine_triangles[on_one[k].second]));

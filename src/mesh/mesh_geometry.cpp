@@ -236,11 +236,13 @@ forEachOverlappingPair(const std::vector<TriangleBox>& boxes, unsigned threads,
   constexpr double kMaxCellsPerAxis = 1 << 20;
   const double cell =
       std::max(2 * *median, (top - origin).maxCoeff() / kMaxCellsPerAxis);
-  if (!(cell > 0) || !std::isfinite(cell))
-    return withCgal();
-  // One multiplication per coordinate, the same for every box and every overlap, so
-  // that an overlap's cell is among the cells of both its boxes.
+  // Multiplying by the reciprocal is cheaper than dividing. Like the division, it is
+  // one monotone function for every box and every overlap's corner, so that an
+  // overlap's cell is among the cells of both its boxes. A subnormal cell (a mesh
+  // narrower than about 1e-302) would make the reciprocal infinite.
   const double per_cell = 1 / cell;
+  if (!(cell > 0) || !std::isfinite(cell) || !std::isfinite(per_cell))
+    return withCgal();
   const auto cellOf = [&](const Eigen::Vector3d& x) {
     const Eigen::Vector3d c = ((x - origin) * per_cell).array().floor();
     return Eigen::Array<std::uint64_t, 3, 1>(

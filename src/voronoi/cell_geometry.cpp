@@ -344,8 +344,8 @@ computeTileGeometry(Delaunay& dt, const std::vector<Eigen::Vector3d>& points,
   // structure of the tile, goes before the rest of the table and the star lists are
   // made. Its cells come from TBB's scalable allocator, which keeps freed blocks for
   // reuse by its own allocations; handing them back to the system lets the vectors
-  // below take their place instead of adding to the peak (1M random torus: 1.25 to
-  // 1.0 GB).
+  // below take their place instead of adding to the peak. With the keys and centers
+  // made after the clear, the peak fell by a fifth (docs/performance.md).
   std::vector<CellHandle>().swap(all_cells);
   dt.clear();
   scalable_allocation_command(TBBMALLOC_CLEAN_ALL_BUFFERS, nullptr);

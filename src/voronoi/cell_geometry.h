@@ -32,7 +32,8 @@ struct TileContribution
  * unbounded (sized by the caller), and the cells and marks they own to \a out. Every
  * value is computed from the vertices in ascending sample order and every tie broken
  * by sample indices, so it does not depend on the tile, its halo or the insertion
- * order. \a points are the coordinates \a dt was built from. Clears \a dt.
+ * order. \a points are exactly the coordinates \a dt was built from: the circumcenters
+ * are computed from them once \a dt is cleared. Clears \a dt.
  * \a sin_theta is the sine of the cocone angle. */
 void computeTileGeometry(Delaunay& dt, const std::vector<Eigen::Vector3d>& points,
                          const std::vector<std::uint32_t>& tile_of, std::uint32_t tile,

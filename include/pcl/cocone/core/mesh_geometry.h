@@ -49,11 +49,13 @@ segmentCrossesTriangle(const std::vector<Eigen::Vector3d>& points, std::uint32_t
  * Triangles without area (a repeated index or collinear corners) are skipped, and so
  * are triangles with a non-finite corner. Bounding-box filtered: a uniform grid for a
  * mesh of triangles alike in size (a few box tests per triangle), CGAL's segment tree
- * otherwise (O(T log^3 T) for any mesh). \param[in] points the vertex coordinates (any
- * unit) \param[in] triangles the mesh, as index triples into \a points \param[in]
- * threads the most threads the grid's cells are tested on (0: every core); the pairs
- * are the same for any count \return the intersecting pairs as positions in \a
- * triangles, the smaller first, sorted; empty for a mesh without self-intersection
+ * otherwise (O(T log^3 T) for any mesh).
+ * \param[in] points the vertex coordinates (any unit)
+ * \param[in] triangles the mesh, as index triples into \a points
+ * \param[in] threads the most threads the grid's cells are tested on (0: every core);
+ *            the pairs are the same for any count
+ * \return the intersecting pairs as positions in \a triangles, the smaller first,
+ *         sorted; empty for a mesh without self-intersection
  * \throws std::out_of_range for an index outside \a points */
 PCL_COCONE_EXPORT std::vector<std::pair<std::size_t, std::size_t>>
 findSelfIntersections(const std::vector<Eigen::Vector3d>& points,
