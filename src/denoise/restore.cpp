@@ -115,7 +115,8 @@ fillHoles(const std::vector<Eigen::Vector3d>& points,
  * (triangles joined through edges at the vertex), every fan but the one with the most
  * triangles (ties: the one holding the earliest triangle), until every vertex has one
  * fan: removing crossing triangles can pinch the mesh there. Flags the vertices of the
- * removed triangles in \a touched; returns how many were removed. */
+ * removed triangles in \a touched, which has an entry for every vertex; returns how
+ * many were removed. */
 std::size_t
 removePinches(std::vector<TriangleIndices>& triangles,
               std::vector<std::uint8_t>& touched)
@@ -257,15 +258,16 @@ removeRepairScraps(std::vector<TriangleIndices>& triangles,
 }
 
 /** The intersecting pairs of \a triangles (as findSelfIntersections gives them) when
- * those before \a first_new intersect no other: the repair removed every pair they
- * formed. Each pair then holds a triangle from \a first_new on (a fill), so only the
- * triangles whose boxes meet a fill's are checked. Many fills: the whole mesh. */
+ * those before \a first_new intersect none of one another: the repair removed every
+ * pair they formed. Each pair then holds a triangle from \a first_new on (a fill's),
+ * so only the triangles whose boxes meet a fill triangle's are checked. More than
+ * kMaxFillsCheckedAlone fill triangles: the whole mesh. */
 std::vector<std::pair<std::size_t, std::size_t>>
 crossingsOfFills(const std::vector<Eigen::Vector3d>& points,
                  const std::vector<TriangleIndices>& triangles, std::size_t first_new,
                  unsigned threads)
 {
-  constexpr std::size_t kMaxFillsCheckedAlone = 64;
+  constexpr std::size_t kMaxFillsCheckedAlone = 64; // fill triangles
   if (first_new == triangles.size())
     return {};
   if (triangles.size() - first_new > kMaxFillsCheckedAlone)
