@@ -29,6 +29,16 @@ edgeKey(std::uint32_t a, std::uint32_t b)
   return (std::uint64_t(a) << 32) | b;
 }
 
+/** The bounding box of triangle \a t of \a points. */
+Eigen::AlignedBox3d
+triangleBox(const std::vector<Eigen::Vector3d>& points, const TriangleIndices& t)
+{
+  Eigen::AlignedBox3d box(points[t[0]]);
+  box.extend(points[t[1]]);
+  box.extend(points[t[2]]);
+  return box;
+}
+
 /** Fills the holes of \a triangles through a vertex flagged in \a touched; returns the
  * number of triangles added. */
 std::size_t
@@ -88,10 +98,7 @@ fillHoles(const std::vector<Eigen::Vector3d>& points,
     box.extend(box.min() - box.diagonal());
     obstacles.clear();
     for (const TriangleIndices& t : triangles) {
-      Eigen::AlignedBox3d own(points[t[0]]);
-      own.extend(points[t[1]]);
-      own.extend(points[t[2]]);
-      if (own.intersects(box))
+      if (triangleBox(points, t).intersects(box))
         obstacles.push_back(t);
     }
     if (!fillLoopByLeastArea(points, loop, is_edge, obstacles, fill, blockers,
@@ -272,21 +279,15 @@ crossingsOfFills(const std::vector<Eigen::Vector3d>& points,
     return {};
   if (triangles.size() - first_new > kMaxFillsCheckedAlone)
     return findSelfIntersections(points, triangles, threads);
-  const auto boxOf = [&](const TriangleIndices& t) {
-    Eigen::AlignedBox3d box(points[t[0]]);
-    box.extend(points[t[1]]);
-    box.extend(points[t[2]]);
-    return box;
-  };
   std::vector<Eigen::AlignedBox3d> fills;
   Eigen::AlignedBox3d around_fills;
   for (std::size_t t = first_new; t < triangles.size(); ++t) {
-    fills.push_back(boxOf(triangles[t]));
+    fills.push_back(triangleBox(points, triangles[t]));
     around_fills.extend(fills.back());
   }
   std::vector<std::size_t> chosen; // positions in triangles
   for (std::size_t t = 0; t < first_new; ++t) {
-    const Eigen::AlignedBox3d box = boxOf(triangles[t]);
+    const Eigen::AlignedBox3d box = triangleBox(points, triangles[t]);
     if (box.intersects(around_fills) &&
         std::any_of(fills.begin(), fills.end(), [&](const Eigen::AlignedBox3d& fill) {
           return box.intersects(fill);
