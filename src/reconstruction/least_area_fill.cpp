@@ -227,6 +227,28 @@ fillLoopByLeastArea(const std::vector<Vector>& points,
     }
   };
 
+  // A fill folded over itself (found on a noisy cube's crease: a 7-edge loop whose
+  // least-area fill put two of its triangles through each other) is no fill. Each pair
+  // of its triangles is tested; the larger of a crossing pair (ties: the later) is
+  // excluded like a triangle that crosses the surface, and the fill solved again.
+  // Returns whether the fill is clear of itself.
+  const auto clearOfItself = [&] {
+    for (std::size_t a = 0; a < fill.size(); ++a)
+      for (std::size_t b = a + 1; b < fill.size(); ++b) {
+        if (!trianglesIntersect(points, fill[a], fill[b]))
+          continue;
+        const auto [ia, ja, ka] = chosen[a];
+        const auto [ib, jb, kb] = chosen[b];
+        const std::size_t larger = areas[at(ia, ja, ka)] > areas[at(ib, jb, kb)]
+                                       ? at(ia, ja, ka)
+                                       : at(ib, jb, kb);
+        verdicts[larger] = kCrossing;
+        crossed_by.emplace(larger, std::make_pair(crossed.size(), crossed.size()));
+        return false;
+      }
+    return true;
+  };
+
   for (std::size_t round = 0; round < kFillRounds && solve(false); ++round) {
     collectFill();
     bool clear = true;
@@ -256,7 +278,7 @@ fillLoopByLeastArea(const std::vector<Vector>& points,
               break;
             }
     }
-    if (clear)
+    if (clear && clearOfItself())
       return true;
   }
 
@@ -269,6 +291,10 @@ fillLoopByLeastArea(const std::vector<Vector>& points,
   if (!found)
     return false;
   collectFill();
+  if (!clearOfItself()) { // rare: no further search
+    fill.clear();
+    return false;
+  }
   return true;
 }
 

@@ -27,7 +27,9 @@ struct LeastAreaFillScratch
 /** The triangulation of the polygon \a loop of least total area (dynamic programming
  * over its diagonals, O(m^3) for m vertices) that uses no diagonal \a is_edge names and
  * no triangle intersecting an obstacle (trianglesIntersect: sharing vertices is not
- * crossing).
+ * crossing). No two of its triangles intersect each other either: where the least-area
+ * one folds through itself, the larger triangle of a crossing pair is excluded and the
+ * search goes on, so the fill returned may then be larger than the least area.
  * \param[in] points vertex positions
  * \param[in] loop the polygon: indices into \a points, the last joined to the first; it
  *            runs a -> b as the surface's triangles traverse its edges
