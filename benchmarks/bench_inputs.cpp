@@ -295,8 +295,11 @@ noisyInput(test::Shape shape, std::size_t n, double sigma_in_spacings,
   input.source = source.str();
   input.kind = "noisy";
   input.points.clear();
-  for (const Eigen::Vector3d& p : noisy->points)
+  for (const Eigen::Vector3d& p : noisy->points) {
     input.points.push_back(roundedToFloat(p));
+    input.farthest_sample = std::max(input.farthest_sample,
+                                     noisy->distance_to_surface(input.points.back()));
+  }
   input.shape = std::move(noisy);
   return input;
 }

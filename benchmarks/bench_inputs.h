@@ -63,6 +63,9 @@ struct Input
   std::size_t unique = 0;                    ///< distinct points
   double spacing = 0;  ///< mean distance to the nearest other sample
   double diagonal = 0; ///< bounding-box diagonal
+  /** Noisy inputs: the largest distance of a sample from the true surface. A mesh
+   * through the samples is at least this far from it somewhere. */
+  double farthest_sample = 0;
 
   /** Analytic reference (generated shapes). */
   std::shared_ptr<const test::SampledShape> shape;

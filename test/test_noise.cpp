@@ -230,7 +230,8 @@ struct NoisyCase
 {
   Generator generate;
   std::size_t samples;
-  double sigma; ///< in spacings
+  double sigma;                    ///< in spacings
+  const char* sampling = "random"; ///< in the test's name
 };
 
 class NoisyShapes : public ::testing::TestWithParam<NoisyCase>
@@ -238,8 +239,10 @@ class NoisyShapes : public ::testing::TestWithParam<NoisyCase>
 
 // At default parameters: exact topology (closed where closed, the true loops where
 // open, one component), at least 99% of the samples in the mesh, the mesh within 1%
-// of the diagonal of the true surface, a manifold without self-intersection, whose
-// vertices are the input samples.
+// of the diagonal of the true surface (or of its farthest vertex, where the noise puts
+// a sample beyond that), a manifold without self-intersection, whose vertices are the
+// input samples. Random and blue-noise cubes both: a folded fill at a crease of the
+// random cube at 0.3 spacings once left a hole there.
 TEST_P(NoisyShapes, ExactTopologyThroughTheSamples)
 {
   const NoisyCase& c = GetParam();
@@ -259,19 +262,34 @@ TEST_P(NoisyShapes, ExactTopologyThroughTheSamples)
     to_surface = std::max(to_surface, shape.distance_to_surface(p));
   const SampledShape truth = c.generate(c.samples / 4, 5);
   const double to_mesh = distancesToMesh(truth.points, points, triangles).max;
-  const double hausdorff =
-      std::max(to_surface, to_mesh) / boundingBoxDiagonal(truth.points);
+  const double diagonal = boundingBoxDiagonal(truth.points);
+  const double hausdorff = std::max(to_surface, to_mesh) / diagonal;
+  // A mesh through the samples is as far from the surface as its farthest vertex. On
+  // the cube at 0.5 spacings (223 spacings across) the noise alone puts samples at
+  // 1.035% of the diagonal (4.6 sigma, about the largest of 100k Gaussian deviates), so
+  // there the bound is that vertex: the mesh may add nothing to the samples' own
+  // deviation. Everywhere else the samples stay within 0.71%, and the bound is 1%.
+  std::vector<std::uint8_t> used_vertex(points.size(), 0);
+  for (const TriangleIndices& t : triangles)
+    for (const std::uint32_t v : t)
+      used_vertex[v] = 1;
+  double farthest_vertex = 0;
+  for (std::size_t v = 0; v < points.size(); ++v)
+    if (used_vertex[v])
+      farthest_vertex = std::max(farthest_vertex, shape.distance_to_surface(points[v]));
+  const double bound = std::max(0.01, farthest_vertex / diagonal);
   std::cout << "[ measured ] " << label << ": " << topology.boundary_loops.size()
             << " loops, " << topology.components << " components, genus "
             << topology.genus() << ", " << 100 * used << "% used, Hausdorff "
-            << 100 * hausdorff << "% of the diagonal, "
+            << 100 * hausdorff << "% of the diagonal (farthest vertex "
+            << 100 * farthest_vertex / diagonal << "%), "
             << cocone.getReport().restore_removed_triangles << " restore-removed, "
             << cocone.getReport().restore_filled_triangles << " filled" << std::endl;
   EXPECT_EQ(topology.boundary_loops.size(), std::size_t(shape.boundary_loops)) << label;
   EXPECT_EQ(topology.components, 1u) << label;
   EXPECT_EQ(topology.genus(), shape.genus) << label;
   EXPECT_GE(used, 0.99) << label;
-  EXPECT_LE(hausdorff, 0.01) << label;
+  EXPECT_LE(hausdorff, bound) << label;
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -289,10 +307,12 @@ INSTANTIATE_TEST_SUITE_P(
                       NoisyCase{randomSample<Shape::open_cylinder>, 100000, 0.3},
                       NoisyCase{randomSample<Shape::open_cylinder>, 100000, 0.5},
                       NoisyCase{randomSample<Shape::cube>, 100000, 0.1},
-                      NoisyCase{sampleCube, 100000, 0.3}),
+                      NoisyCase{sampleCube, 100000, 0.3, "blue_noise"},
+                      NoisyCase{randomSample<Shape::cube>, 100000, 0.3},
+                      NoisyCase{randomSample<Shape::cube>, 100000, 0.5}),
     [](const ::testing::TestParamInfo<NoisyCase>& info) {
       const SampledShape name_only = info.param.generate(16, 1);
-      return name_only.name + "_sigma" +
+      return name_only.name + "_" + info.param.sampling + "_sigma" +
              std::to_string(int(info.param.sigma * 100 + 0.5)) + "percent";
     });
 
