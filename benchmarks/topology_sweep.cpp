@@ -7,9 +7,10 @@
 // points (docs/topology.md). Not run by the tests; single-threaded by default.
 //
 //   pcl_cocone_topology_sweep [-sizes 10000,100000] [-seeds 1,2] [-shapes torus,cube]
-//                             [-ramp] [-threads N] [-intersections] [-verbose] [-repeat
-//                             N]
+//                             [-ramp] [-noise S] [-threads N] [-intersections]
+//                             [-verbose] [-repeat N]
 //   pcl_cocone_topology_sweep -file cloud.ply [-verbose]   (one data file)
+#include "support/noise.h"
 #include "support/shapes.h"
 
 #include <pcl/cocone/core/mesh_geometry.h>
@@ -151,6 +152,7 @@ main(int argc, char** argv)
   std::vector<std::uint32_t> seeds = {1};
   std::vector<shapes::Shape> chosen = shapes::allShapes();
   bool ramp = false, intersections = false;
+  double noise = 0; // sigma of isotropic Gaussian noise, in mean spacings
   std::string file;
   unsigned threads = 1;
   unsigned tiles = 0;
@@ -183,6 +185,14 @@ main(int argc, char** argv)
       repeat = std::max(1, std::stoi(argv[++i]));
     else if (arg == "-ramp")
       ramp = true;
+    else if (arg == "-noise" && has_value) {
+      noise = std::stod(argv[++i]);
+      if (!(noise >= 0) || !std::isfinite(noise)) {
+        std::fprintf(stderr, "%s: -noise wants a finite sigma >= 0, in spacings\n",
+                     argv[0]);
+        return 2;
+      }
+    }
     else if (arg == "-intersections")
       intersections = true;
     else if (arg == "-verbose") // the mesher's hole decisions, on stderr
@@ -192,7 +202,7 @@ main(int argc, char** argv)
     else {
       std::fprintf(
           stderr,
-          "usage: %s [-sizes n,n] [-seeds s,s] [-shapes a,b] [-ramp] "
+          "usage: %s [-sizes n,n] [-seeds s,s] [-shapes a,b] [-ramp] [-noise S] "
           "[-threads N] [-tiles N] [-intersections] [-verbose] [-repeat N] [-file "
           "path]\n",
           argv[0]);
@@ -214,7 +224,12 @@ main(int argc, char** argv)
   for (const std::size_t n : sizes)
     for (const shapes::Shape which : chosen)
       for (const std::uint32_t seed : seeds) {
-        const shapes::SampledShape shape = shapes::sampleRandom(which, n, seed, ramp);
+        // With -noise, the noise of seed + 1000 (not the samples' own stream).
+        const shapes::SampledShape shape =
+            noise > 0
+                ? shapes::withGaussianNoise(shapes::sampleRandom(which, n, seed, ramp),
+                                            noise, seed + 1000)
+                : shapes::sampleRandom(which, n, seed, ramp);
         // The bare Delaunay and the whole reconstruction (as the classes run it:
         // spatial order, diagram, mesher) take turns, -repeat times, and the best time
         // of each counts: a burst of load on the shared machine hits both alike.
