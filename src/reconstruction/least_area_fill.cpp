@@ -58,6 +58,13 @@ orientedNormal(const std::vector<Vector>& points, const TriangleIndices& o)
 // surface also excludes a degenerate triangle on it, which the triangle test would let
 // pass: no loss.) When no optimum passes within kFillRounds, the full search decides,
 // and names the blockers: the obstacles that the candidates it tests cross.
+//
+// A fill must also not cross itself. That constraint is not one of single triangles:
+// a triangle is excluded for crossing another triangle of one optimum, which the next
+// optimum may not hold. So once a fold has been found, the fill returned is clear of
+// itself and of the surface, but not always the least-area such fill: a heuristic for
+// a rare case (4 of 300 strongly folded random loops in the tests fold at the least
+// area).
 bool
 fillLoopByLeastArea(const std::vector<Vector>& points,
                     const std::vector<std::uint32_t>& loop,
@@ -284,14 +291,18 @@ fillLoopByLeastArea(const std::vector<Vector>& points,
 
   // No fill passed in time: the full search decides, and names everything the
   // candidates it considers cross, for the caller to grow the hole over.
+  // Each fold found excludes one more triangle of the optimum, so this ends.
   fill.clear();
-  const bool found = solve(true);
+  bool found = solve(true);
+  while (found) {
+    collectFill();
+    if (clearOfItself())
+      break;
+    found = solve(true);
+  }
   std::sort(blockers.begin(), blockers.end());
   blockers.erase(std::unique(blockers.begin(), blockers.end()), blockers.end());
-  if (!found)
-    return false;
-  collectFill();
-  if (!clearOfItself()) { // rare: no further search
+  if (!found) {
     fill.clear();
     return false;
   }

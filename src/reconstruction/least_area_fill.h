@@ -29,7 +29,8 @@ struct LeastAreaFillScratch
  * no triangle intersecting an obstacle (trianglesIntersect: sharing vertices is not
  * crossing). No two of its triangles intersect each other either: where the least-area
  * one folds through itself, the larger triangle of a crossing pair is excluded and the
- * search goes on, so the fill returned may then be larger than the least area.
+ * search goes on, so the fill returned may then be larger than the least clear one
+ * (see the source).
  * \param[in] points vertex positions
  * \param[in] loop the polygon: indices into \a points, the last joined to the first; it
  *            runs a -> b as the surface's triangles traverse its edges
@@ -46,7 +47,8 @@ struct LeastAreaFillScratch
  *             between the loop and a smaller fill; sorted, without repeats; cleared
  *             first, and empty when the fill was found quickly
  * \param[in,out] scratch tables reused between calls
- * \return whether a fill exists (false also for fewer than 3 vertices) */
+ * \return whether a fill was found (false also for fewer than 3 vertices); after a
+ *         fold, false does not prove that no clear fill exists */
 bool fillLoopByLeastArea(
     const std::vector<Eigen::Vector3d>& points, const std::vector<std::uint32_t>& loop,
     const std::function<bool(std::uint32_t, std::uint32_t)>& is_edge,
