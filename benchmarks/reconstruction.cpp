@@ -671,7 +671,8 @@ runReconstructionSection(Context& context)
   // 1% of the diagonal, no non-manifold edge and no self-intersection; beside scale
   // space, the peer made for noise. Where the noise itself puts a sample farther than
   // 1% (the cube at 0.5 spacings: 1.035%), the bound is that sample's distance: a mesh
-  // through the samples cannot be nearer.
+  // through the samples cannot be nearer. The farthest of all the samples, as a peer's
+  // used samples are not known (test_noise takes those of the mesh).
   {
     const auto exact = [](const Input& input, const Measurement& m) {
       const bool topology =

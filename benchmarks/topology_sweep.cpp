@@ -210,9 +210,19 @@ main(int argc, char** argv)
     }
   }
 
-  if (!file.empty())
+  if (!file.empty()) {
+    if (noise > 0) {
+      std::fprintf(stderr, "%s: -noise applies to the generated shapes, not to -file\n",
+                   argv[0]);
+      return 2;
+    }
     return reconstructFile(file, threads);
+  }
 
+  if (noise > 0)
+    std::printf(
+        "Isotropic Gaussian noise of %g mean spacings (noise seed: seed + 1000)\n\n",
+        noise);
   std::printf(
       "| shape | n | seed | loops | true | spurious | true lost | closed | genus "
       "(true) | used | non-manifold | intersections | Delaunay s | tiles | "
