@@ -314,21 +314,32 @@ bruteForceLeastArea(const Points& points, const std::vector<std::uint32_t>& loop
   return best;
 }
 
+/** \a m points around the unit circle, each moved by up to \a across in x and y and
+ * by up to \a height in z (uniformly, drawn in that order): a skew loop. */
+Points
+skewLoopPoints(std::mt19937& random, std::size_t m, double across, double height)
+{
+  std::uniform_real_distribution<double> sideways(-across, across), up(-height, height);
+  Points points;
+  for (std::size_t k = 0; k < m; ++k) {
+    const double angle = 2 * M_PI * static_cast<double>(k) / static_cast<double>(m);
+    const double x = std::cos(angle) + sideways(random);
+    const double y = std::sin(angle) + sideways(random);
+    points.emplace_back(x, y, up(random));
+  }
+  return points;
+}
+
 TEST(LeastAreaFill, RandomSkewLoopsGetTheLeastArea)
 {
   std::mt19937 random(3);
-  std::uniform_real_distribution<double> jitter(-0.4, 0.4);
   LeastAreaFillScratch scratch; // reused across loops of any size, as the mesher does
   for (int trial = 0; trial < 40; ++trial) {
     const std::size_t m = 4 + trial % 6;
-    Points points;
+    const Points points = skewLoopPoints(random, m, 0.4, 0.4);
     std::vector<std::uint32_t> loop;
-    for (std::size_t k = 0; k < m; ++k) {
-      const double angle = 2 * M_PI * static_cast<double>(k) / static_cast<double>(m);
-      points.emplace_back(std::cos(angle) + jitter(random),
-                          std::sin(angle) + jitter(random), jitter(random));
+    for (std::size_t k = 0; k < m; ++k)
       loop.push_back(static_cast<std::uint32_t>(m - 1 - k)); // any numbering
-    }
     std::set<std::pair<std::uint32_t, std::uint32_t>> edges; // a few diagonals taken
     for (int e = 0; e < trial % 3; ++e) {
       const auto a = static_cast<std::uint32_t>(random() % m);
@@ -363,19 +374,14 @@ TEST(LeastAreaFill, RandomSkewLoopsGetTheLeastArea)
 TEST(LeastAreaFill, FillsNeverCrossThemselves)
 {
   std::mt19937 random(5);
-  std::uniform_real_distribution<double> jitter(-0.6, 0.6), height(-1.5, 1.5);
   LeastAreaFillScratch scratch;
   std::size_t larger_than_optimum = 0, not_found = 0;
   for (int trial = 0; trial < 300; ++trial) {
     const std::size_t m = 5 + trial % 6;
-    Points points;
+    const Points points = skewLoopPoints(random, m, 0.6, 1.5);
     std::vector<std::uint32_t> loop;
-    for (std::size_t k = 0; k < m; ++k) {
-      const double angle = 2 * M_PI * static_cast<double>(k) / static_cast<double>(m);
-      points.emplace_back(std::cos(angle) + jitter(random),
-                          std::sin(angle) + jitter(random), height(random));
+    for (std::size_t k = 0; k < m; ++k)
       loop.push_back(static_cast<std::uint32_t>(k));
-    }
     std::vector<TriangleIndices> fill;
     std::vector<std::uint32_t> blockers;
     if (!fillLoopByLeastArea(points, loop, kNoEdge, {}, fill, blockers, scratch)) {

@@ -241,11 +241,11 @@ removeRepairScraps(std::vector<TriangleIndices>& triangles,
   {
     kUnseen,
     kInPiece, // of the piece being explored
-    kSmall,   // of a whole piece of at most kMaxRestoreScrap triangles, judged
-    kLarge    // of a piece larger than that
+    kSmall,   // of a whole piece of at most kMaxRestoreScrap triangles, kept
+    kScrap,   // of such a piece whose rim the repair made: removed
+    kLarge    // of a piece larger than kMaxRestoreScrap triangles
   };
   std::vector<std::uint8_t> state(triangles.size(), kUnseen);
-  std::vector<std::uint8_t> scrap(triangles.size(), 0);
   std::vector<std::uint32_t> piece;
   for (std::uint32_t v = 0; v < repaired.size(); ++v) {
     if (!repaired[v])
@@ -260,14 +260,19 @@ removeRepairScraps(std::vector<TriangleIndices>& triangles,
         const TriangleIndices& t = triangles[piece[i]];
         for (int k = 0; k < 3 && !large; ++k) {
           const std::uint32_t a = t[k], b = t[(k + 1) % 3];
-          std::size_t on_edge = 0; // the triangles on edge a b, this one included
-          for (const std::uint32_t* u = at.begin(a); u != at.end(a) && !large; ++u) {
+          // The triangles on edge a b, this one included: those at the end with fewer
+          // that hold the other end (a fan's hub may hold thousands).
+          const bool from_a = at.end(a) - at.begin(a) <= at.end(b) - at.begin(b);
+          const std::uint32_t scanned = from_a ? a : b, other = from_a ? b : a;
+          std::size_t on_edge = 0;
+          for (const std::uint32_t* u = at.begin(scanned);
+               u != at.end(scanned) && !large; ++u) {
             const TriangleIndices& o = triangles[*u];
-            if (o[0] != b && o[1] != b && o[2] != b)
+            if (o[0] != other && o[1] != other && o[2] != other)
               continue;
             ++on_edge;
             if (state[*u] == kLarge ||
-                (state[*u] == kUnseen && piece.size() == kMaxRestoreScrap)) {
+                (state[*u] == kUnseen && piece.size() >= kMaxRestoreScrap)) {
               large = true;
             }
             else if (state[*u] == kUnseen) {
@@ -280,15 +285,13 @@ removeRepairScraps(std::vector<TriangleIndices>& triangles,
             rim_repaired = false;
         }
       }
-      for (const std::uint32_t u : piece) {
-        state[u] = large ? kLarge : kSmall;
-        scrap[u] = !large && rim_repaired;
-      }
+      for (const std::uint32_t u : piece)
+        state[u] = large ? kLarge : rim_repaired ? kScrap : kSmall;
     }
   }
   std::size_t kept = 0;
   for (std::size_t t = 0; t < triangles.size(); ++t)
-    if (!scrap[t])
+    if (state[t] != kScrap)
       triangles[kept++] = triangles[t];
   const std::size_t removed = triangles.size() - kept;
   triangles.resize(kept);

@@ -63,7 +63,7 @@ orientedNormal(const std::vector<Vector>& points, const TriangleIndices& o)
 // a triangle is excluded for crossing another triangle of one optimum, which the next
 // optimum may not hold. So once a fold has been found, the fill returned is clear of
 // itself and of the surface, but not always the least-area such fill: a heuristic for
-// a rare case (4 of 300 strongly folded random loops in the tests fold at the least
+// a rare case (2 of 300 strongly folded random loops in the tests fold at the least
 // area).
 bool
 fillLoopByLeastArea(const std::vector<Vector>& points,
