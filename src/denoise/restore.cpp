@@ -152,19 +152,41 @@ fillHoles(const std::vector<Eigen::Vector3d>& points,
   return added;
 }
 
+/** Removes the triangles flagged in \a removed (one flag per triangle), keeping the
+ * order of the others, and flags their vertices in \a touched; returns how many went.
+ */
+std::size_t
+removeFlagged(std::vector<TriangleIndices>& triangles,
+              const std::vector<std::uint8_t>& removed,
+              std::vector<std::uint8_t>& touched)
+{
+  std::size_t kept = 0;
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    if (removed[t]) {
+      for (const std::uint32_t v : triangles[t])
+        touched[v] = 1;
+      continue;
+    }
+    triangles[kept++] = triangles[t];
+  }
+  const std::size_t gone = triangles.size() - kept;
+  triangles.resize(kept);
+  return gone;
+}
+
 /** Removes, at every vertex where the triangles of \a triangles form more than one fan
  * (triangles joined through edges at the vertex), every fan but the one with the most
  * triangles (ties: the one holding the earliest triangle), until every vertex has one
  * fan: removing crossing triangles can pinch the mesh there. Flags the vertices of the
  * removed triangles in \a touched, which has an entry for every vertex; returns how
- * many were removed. */
+ * many were removed. \a at is the incidence of \a triangles, rebuilt whenever some go:
+ * on return, that of the triangles left (the scrap search reads it next). */
 std::size_t
 removePinches(std::vector<TriangleIndices>& triangles,
-              std::vector<std::uint8_t>& touched)
+              std::vector<std::uint8_t>& touched, VertexIncidence& at)
 {
   std::size_t removed_total = 0;
   for (;;) {
-    const VertexIncidence at(triangles, touched.size());
     std::vector<std::uint8_t> removed(triangles.size(), 0);
     std::size_t removed_now = 0;
     std::vector<std::uint32_t> around, fan_of, size_of;
@@ -207,17 +229,8 @@ removePinches(std::vector<TriangleIndices>& triangles,
     }
     if (removed_now == 0)
       return removed_total;
-    std::size_t kept = 0;
-    for (std::size_t t = 0; t < triangles.size(); ++t) {
-      if (removed[t]) {
-        for (const std::uint32_t v : triangles[t])
-          touched[v] = 1;
-        continue;
-      }
-      triangles[kept++] = triangles[t];
-    }
-    triangles.resize(kept);
-    removed_total += removed_now;
+    removed_total += removeFlagged(triangles, removed, touched);
+    at = VertexIncidence(triangles, touched.size());
   }
 }
 
@@ -231,12 +244,12 @@ removePinches(std::vector<TriangleIndices>& triangles,
  *
  * Such a piece holds a repaired vertex, so only the pieces at repaired vertices are
  * explored, each until it is whole or larger than a scrap (the same decision as over
- * every piece of the mesh: a union-find over every edge took 2.8 s at 4M samples). */
+ * every piece of the mesh: a union-find over every edge took 2.8 s at 4M samples).
+ * \a at is the incidence of \a triangles (removePinches leaves it so). */
 std::size_t
 removeRepairScraps(std::vector<TriangleIndices>& triangles,
-                   const std::vector<std::uint8_t>& repaired)
+                   const std::vector<std::uint8_t>& repaired, const VertexIncidence& at)
 {
-  const VertexIncidence at(triangles, repaired.size());
   enum : std::uint8_t
   {
     kUnseen,
@@ -362,22 +375,13 @@ restoreInputPositions(const std::vector<Eigen::Vector3d>& points,
     for (const auto& [a, b] : pairs)
       removed[a] = removed[b] = 1;
     std::vector<std::uint8_t> touched(points.size(), 0);
-    std::size_t kept = 0;
-    for (std::size_t t = 0; t < triangles.size(); ++t) {
-      if (removed[t]) {
-        for (const std::uint32_t v : triangles[t])
-          touched[v] = 1;
-        ++repair.removed_triangles;
-        continue;
-      }
-      triangles[kept++] = triangles[t];
-    }
-    triangles.resize(kept);
-    repair.removed_triangles += removePinches(triangles, touched);
+    repair.removed_triangles += removeFlagged(triangles, removed, touched);
+    VertexIncidence at(triangles, points.size());
+    repair.removed_triangles += removePinches(triangles, touched, at);
     for (std::size_t v = 0; v < points.size(); ++v)
       repaired[v] |= touched[v];
     // Before the fills: a scrap inside a hole would block its fill.
-    repair.removed_triangles += removeRepairScraps(triangles, repaired);
+    repair.removed_triangles += removeRepairScraps(triangles, repaired, at);
     if (round == 2)
       break;
     const std::size_t before_fills = triangles.size();
